@@ -1,0 +1,48 @@
+#pragma once
+// The plain mesh type that crosses the library boundary: double positions and
+// polygon faces (triangles or n-gons) in one flat index buffer.
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+#include <span>
+#include <vector>
+
+namespace ember {
+
+struct Vec3d {
+  double x = 0, y = 0, z = 0;
+  friend bool operator==(const Vec3d&, const Vec3d&) = default;
+};
+
+struct Mesh {
+  std::vector<Vec3d> vertices;
+  /// Concatenated vertex indices of all faces.
+  std::vector<std::uint32_t> indices;
+  /// Face f uses indices[face_offsets[f] .. face_offsets[f+1]). Always starts with 0.
+  std::vector<std::uint32_t> face_offsets{0};
+
+  std::size_t face_count() const { return face_offsets.size() - 1; }
+  std::size_t face_size(std::size_t f) const { return face_offsets[f + 1] - face_offsets[f]; }
+  std::span<const std::uint32_t> face(std::size_t f) const {
+    return {indices.data() + face_offsets[f], face_size(f)};
+  }
+  /// Number of triangles a fan triangulation of every face would give.
+  std::size_t triangle_count() const {
+    std::size_t n = 0;
+    for (std::size_t f = 0; f < face_count(); ++f) n += face_size(f) >= 3 ? face_size(f) - 2 : 0;
+    return n;
+  }
+  std::uint32_t add_vertex(Vec3d p) {
+    vertices.push_back(p);
+    return static_cast<std::uint32_t>(vertices.size() - 1);
+  }
+  void add_face(std::span<const std::uint32_t> f) {
+    indices.insert(indices.end(), f.begin(), f.end());
+    face_offsets.push_back(static_cast<std::uint32_t>(indices.size()));
+  }
+  void add_face(std::initializer_list<std::uint32_t> f) { add_face(std::span<const std::uint32_t>(f.begin(), f.size())); }
+  bool empty() const { return face_count() == 0; }
+  friend bool operator==(const Mesh&, const Mesh&) = default;
+};
+
+}  // namespace ember
