@@ -1,0 +1,82 @@
+#pragma once
+// The public entry point: exact n-ary mesh Booleans (EMBER, Trettner et al. 2022).
+//
+//   ember::Mesh a = ..., b = ...;
+//   ember::BooleanResult r = ember::boolean({a, b}, ember::Operation::Union);
+//   // r.mesh: convex polygons, consistently oriented (outward normals)
+//
+// All operands are quantized together onto one integer grid (|x| <= 2^25, a
+// power-of-two scale so integer and dyadic inputs stay exact); the Boolean is
+// then exact, and results are mapped back to the caller's units with one
+// rounding per coordinate.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "ember/mesh.hpp"
+
+namespace ember {
+
+enum class Operation {
+  Union,         ///< inside any operand
+  Intersection,  ///< inside every operand
+  Difference,    ///< inside the first operand and outside all others
+  Xor,           ///< inside an odd number of operands
+  AtLeastK,      ///< inside at least BooleanOptions::min_k operands
+};
+
+/// A winding-number vector: one winding number per operand.
+using WindingVector = std::span<const int>;
+/// Maps a winding-number vector to inside (true) / outside (false).
+using Indicator = std::function<bool(WindingVector)>;
+
+struct BooleanOptions {
+  /// Worker threads; 0 uses all hardware threads. Results do not depend on it.
+  int threads = 0;
+  /// For Operation::AtLeastK.
+  int min_k = 1;
+  /// Operands that are not closed (some edge is not matched by an opposite edge)
+  /// are an error unless this is set; then they are used as given and a warning
+  /// is added to the result.
+  bool allow_open = false;
+  /// When set, replaces the operation's indicator function.
+  Indicator indicator;
+};
+
+/// Where an output polygon came from.
+struct Provenance {
+  std::uint32_t operand;  ///< index into the operands
+  std::uint32_t face;     ///< face index within that operand
+};
+
+struct BooleanStats {
+  std::size_t input_triangles = 0;
+  std::size_t dropped_degenerate = 0;  ///< triangles that collapsed on the integer grid
+  std::size_t output_polygons = 0;
+  double time_ms = 0;  ///< quantization + core + export
+  int threads = 1;
+};
+
+struct BooleanResult {
+  Mesh mesh;                           ///< convex polygons; T-junctions possible
+  std::vector<Provenance> provenance;  ///< one per face of mesh
+  BooleanStats stats;
+  std::vector<std::string> warnings;
+};
+
+/// Computes the Boolean of any number of operands in one pass. Throws
+/// ember::Error for invalid input (non-finite coordinates, bad indices, open
+/// operands without allow_open, no operands, min_k out of range).
+BooleanResult boolean(std::span<const Mesh> operands, Operation op, const BooleanOptions& options = {});
+
+inline BooleanResult boolean(std::initializer_list<Mesh> operands, Operation op, const BooleanOptions& options = {}) {
+  return boolean(std::span<const Mesh>(operands.begin(), operands.size()), op, options);
+}
+
+/// The indicator function of an operation over n operands.
+Indicator indicator_for(Operation op, std::size_t operands, int min_k = 1);
+
+}  // namespace ember
