@@ -1,0 +1,212 @@
+// The public Boolean: validation, quantization onto the integer grid, the
+// exact core, and export back to the caller's units.
+#include "ember/boolean.hpp"
+
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <unordered_map>
+
+#include "core/solve.hpp"
+#include "ember/core/quantize.hpp"
+#include "ember/error.hpp"
+
+namespace ember {
+
+namespace {
+
+std::string operand_name(std::size_t i) { return "operand " + std::to_string(i); }
+
+void validate(const Mesh& m, std::size_t index) {
+  if (m.face_offsets.empty() || m.face_offsets.front() != 0 || m.face_offsets.back() != m.indices.size())
+    throw Error(operand_name(index) + ": face_offsets must start at 0 and end at indices.size()");
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    if (m.face_offsets[f + 1] < m.face_offsets[f])
+      throw Error(operand_name(index) + ": face_offsets must not decrease (face " + std::to_string(f) + ")");
+    if (m.face_size(f) < 3)
+      throw Error(operand_name(index) + ": face " + std::to_string(f) + " has " + std::to_string(m.face_size(f)) +
+                  " vertices; faces need at least 3");
+    for (const std::uint32_t v : m.face(f))
+      if (v >= m.vertices.size())
+        throw Error(operand_name(index) + ": face " + std::to_string(f) + " uses vertex index " + std::to_string(v) +
+                    ", but the mesh has " + std::to_string(m.vertices.size()) + " vertices");
+  }
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    const Vec3d& p = m.vertices[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw Error(operand_name(index) + ": vertex " + std::to_string(v) +
+                  " has a non-finite coordinate (NaN or infinity); fix or remove it");
+  }
+}
+
+struct PointHash {
+  std::size_t operator()(const IntPoint& p) const {
+    std::uint64_t h = static_cast<std::uint64_t>(p.x) * 0x9e3779b97f4a7c15ULL;
+    h ^= static_cast<std::uint64_t>(p.y) + 0x7f4a7c159e3779b9ULL + (h << 6) + (h >> 2);
+    h ^= static_cast<std::uint64_t>(p.z) + 0x94d049bb133111ebULL + (h << 6) + (h >> 2);
+    return h;
+  }
+};
+
+/// Counts edges whose uses in one direction are not matched by uses in the
+/// other (on the quantized positions, degenerate triangles included, so the
+/// test describes the surface the core actually sees). Zero means closed.
+std::size_t count_open_edges(const std::vector<std::array<IntPoint, 3>>& triangles) {
+  struct EdgeHash {
+    std::size_t operator()(const std::pair<IntPoint, IntPoint>& e) const {
+      return PointHash{}(e.first) * 31 + PointHash{}(e.second);
+    }
+  };
+  std::unordered_map<std::pair<IntPoint, IntPoint>, int, EdgeHash> balance;
+  auto less = [](const IntPoint& a, const IntPoint& b) {
+    return a.x != b.x ? a.x < b.x : (a.y != b.y ? a.y < b.y : a.z < b.z);
+  };
+  for (const auto& t : triangles)
+    for (int e = 0; e < 3; ++e) {
+      const IntPoint& a = t[e];
+      const IntPoint& b = t[(e + 1) % 3];
+      if (a == b) continue;
+      if (less(a, b)) {
+        balance[{a, b}] += 1;
+      } else {
+        balance[{b, a}] -= 1;
+      }
+    }
+  std::size_t open = 0;
+  for (const auto& [edge, count] : balance) open += count != 0;
+  return open;
+}
+
+struct Source {
+  std::uint32_t operand, face;
+};
+
+Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer& q, const std::vector<Source>& sources,
+                 std::vector<Provenance>& provenance) {
+  struct Key {
+    std::uint64_t v[3];
+    bool operator==(const Key& o) const { return std::memcmp(v, o.v, sizeof v) == 0; }
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const { return (k.v[0] * 0x9e3779b97f4a7c15ULL) ^ (k.v[1] * 31) ^ k.v[2]; }
+  };
+  Mesh mesh;
+  std::unordered_map<Key, std::uint32_t, KeyHash> ids;
+  std::vector<std::uint32_t> face;
+  for (const core::OutputPolygon& p : polys) {
+    face.clear();
+    const std::size_t n = p.poly.vertices.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point& v = p.poly.vertices[p.flip ? n - 1 - i : i];
+      Vec3d x = q.dequantize(v);
+      x = {x.x + 0.0, x.y + 0.0, x.z + 0.0};  // -0.0 -> +0.0 so equal points share a vertex
+      Key key{};
+      std::memcpy(&key.v[0], &x.x, 8);
+      std::memcpy(&key.v[1], &x.y, 8);
+      std::memcpy(&key.v[2], &x.z, 8);
+      auto [it, fresh] = ids.try_emplace(key, static_cast<std::uint32_t>(mesh.vertices.size()));
+      if (fresh) mesh.vertices.push_back(x);
+      // Distinct exact points may round to the same double: drop repeats.
+      if (face.empty() || face.back() != it->second) face.push_back(it->second);
+    }
+    while (face.size() > 1 && face.front() == face.back()) face.pop_back();
+    if (face.size() < 3) continue;
+    mesh.add_face(face);
+    const Source& s = sources[p.id];
+    provenance.push_back({s.operand, s.face});
+  }
+  return mesh;
+}
+
+}  // namespace
+
+BooleanResult boolean(std::span<const Mesh> operands, Operation op, const BooleanOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  if (operands.empty()) throw Error("boolean: no operands given; pass at least one mesh");
+  if (options.threads < 0) throw Error("boolean: threads must be >= 0 (0 = all hardware threads)");
+  const Indicator indicator = options.indicator ? options.indicator : indicator_for(op, operands.size(), options.min_k);
+  for (std::size_t i = 0; i < operands.size(); ++i) validate(operands[i], i);
+
+  // One map for all operands, fitted to the vertices faces actually use.
+  std::vector<Vec3d> used;
+  for (const Mesh& m : operands)
+    for (const std::uint32_t v : m.indices) used.push_back(m.vertices[v]);
+  const Quantizer q = Quantizer::fit(used);
+
+  BooleanResult result;
+  core::Soup soup;
+  std::vector<Source> sources;
+  std::array<std::int64_t, 3> lo{Quantizer::kLimit, Quantizer::kLimit, Quantizer::kLimit};
+  std::array<std::int64_t, 3> hi{-Quantizer::kLimit, -Quantizer::kLimit, -Quantizer::kLimit};
+  for (std::size_t o = 0; o < operands.size(); ++o) {
+    const Mesh& m = operands[o];
+    std::vector<IntPoint> grid(m.vertices.size());
+    std::vector<char> done(m.vertices.size(), 0);
+    for (const std::uint32_t v : m.indices)
+      if (!done[v]) {
+        grid[v] = q.quantize(m.vertices[v]);
+        done[v] = 1;
+        const std::int64_t c[3] = {grid[v].x, grid[v].y, grid[v].z};
+        for (int a = 0; a < 3; ++a) {
+          lo[a] = std::min(lo[a], c[a]);
+          hi[a] = std::max(hi[a], c[a]);
+        }
+      }
+    std::vector<std::array<IntPoint, 3>> triangles;
+    for (std::size_t f = 0; f < m.face_count(); ++f) {
+      const auto face = m.face(f);
+      for (std::size_t i = 1; i + 1 < face.size(); ++i) {
+        const std::array<IntPoint, 3> t{grid[face[0]], grid[face[i]], grid[face[i + 1]]};
+        triangles.push_back(t);
+        ++result.stats.input_triangles;
+        std::optional<Polygon> poly = make_triangle(t[0], t[1], t[2]);
+        if (!poly) {
+          ++result.stats.dropped_degenerate;
+          continue;
+        }
+        core::SoupPolygon sp{std::move(*poly), static_cast<std::uint32_t>(sources.size()),
+                             static_cast<std::uint32_t>(o), {}, {}};
+        core::update_bounds(sp);
+        soup.push_back(std::move(sp));
+        sources.push_back({static_cast<std::uint32_t>(o), static_cast<std::uint32_t>(f)});
+      }
+    }
+    if (const std::size_t open = count_open_edges(triangles); open > 0) {
+      const std::string msg = operand_name(o) + " is not closed: " + std::to_string(open) +
+                              " edges are not matched by an opposite edge, so inside/outside is undefined";
+      if (!options.allow_open) throw Error(msg + "; repair the mesh or allow open inputs (CLI: --allow-open)");
+      result.warnings.push_back(msg + "; proceeding as requested, the result may have holes");
+    }
+  }
+
+  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+  result.stats.threads = threads;
+  std::vector<core::OutputPolygon> polys;
+  if (!soup.empty()) {
+    core::Subproblem root;
+    for (int a = 0; a < 3; ++a) {
+      root.box.lo[a] = lo[a] - 1;  // padding keeps the reference point off all geometry
+      root.box.hi[a] = hi[a] + 1;
+      root.ref.num[a] = 2 * root.box.lo[a] + 1;  // lo + 1/2: inside the box, outside everything
+    }
+    root.ref.shift = 1;
+    root.ref_w.assign(operands.size(), 0);
+    root.soup = std::move(soup);
+    core::SolveContext ctx;
+    ctx.operands = operands.size();
+    ctx.inside = [&indicator](const core::Wnv& w) { return indicator(WindingVector(w.data(), w.size())); };
+    tbb::task_arena arena(threads);
+    arena.execute([&] { polys = core::solve(std::move(root), ctx); });
+  }
+  result.mesh = export_mesh(polys, q, sources, result.provenance);
+  result.stats.output_polygons = result.mesh.face_count();
+  result.stats.time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace ember

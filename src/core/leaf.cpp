@@ -1,0 +1,235 @@
+// Leaf computation (paper Sections 4.3 and 4.4): every polygon is cut by all
+// others with a polygon-local BSP, then each enabled piece is classified by
+// tracing a path from the leaf's reference point to an interior point.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "core/solve.hpp"
+#include "core/trace.hpp"
+#include "ember/error.hpp"
+
+namespace ember::core {
+
+namespace {
+
+struct Piece {
+  Polygon poly;
+  bool disabled = false;  ///< overlapped by a coplanar polygon with a lower id (Fig. 8)
+};
+
+bool boxes_overlap(const SoupPolygon& a, const SoupPolygon& b) {
+  for (int i = 0; i < 3; ++i)
+    if (a.hi[i] < b.lo[i] || b.hi[i] < a.lo[i]) return false;
+  return true;
+}
+
+/// True if no vertex of `poly` is strictly on the negative side of `plane`.
+bool all_nonnegative(const Polygon& poly, const Plane& plane) {
+  for (const Point& v : poly.vertices)
+    if (classify(v, plane) < 0) return false;
+  return true;
+}
+
+/// Coplanar convex polygons overlap with positive area iff no edge of either
+/// weakly separates them (separating-axis theorem in the common plane).
+bool coplanar_overlap(const Polygon& a, const Polygon& b) {
+  for (const Plane& e : b.edges)
+    if (all_nonnegative(a, e)) return false;
+  for (const Plane& e : a.edges)
+    if (all_nonnegative(b, e)) return false;
+  return true;
+}
+
+/// Case C4: cut the piece along the edges of the coplanar polygon `other`;
+/// parts outside become new pieces, the part inside stays in pieces[i].
+void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& other, bool disable) {
+  Polygon neg, pos;
+  for (const Plane& e : other.edges) {
+    const ClipSide side = clip(pieces[i].poly, e, neg, pos);
+    if (side == ClipSide::Both) {
+      pieces.push_back({pos, pieces[i].disabled});
+      pieces[i].poly = neg;
+    }
+  }
+  if (disable) pieces[i].disabled = true;
+}
+
+/// Case C3: split the piece by the other polygon's plane if their
+/// intersection segment crosses the piece's interior with positive length.
+void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& support, const Polygon& other) {
+  const Polygon& poly = pieces[i].poly;
+  bool neg = false, pos = false;
+  for (const Point& v : poly.vertices) {
+    const int s = classify(v, other.support);
+    neg |= s < 0;
+    pos |= s > 0;
+  }
+  if (!(neg && pos)) return;
+  std::vector<Plane> cons;
+  cons.reserve(poly.edges.size() + other.edges.size());
+  cons.insert(cons.end(), poly.edges.begin(), poly.edges.end());
+  cons.insert(cons.end(), other.edges.begin(), other.edges.end());
+  if (!line_region_has_length(support, other.support, cons)) return;
+  Polygon n, p;
+  if (clip(poly, other.support, n, p) != ClipSide::Both) return;
+  pieces[i].poly = std::move(n);
+  pieces.push_back({std::move(p), pieces[i].disabled});
+}
+
+std::vector<Piece> build_bsp(const Soup& soup, const SoupPolygon& t) {
+  std::vector<Piece> pieces{{t.poly, false}};
+  for (const SoupPolygon& o : soup) {
+    if (o.id == t.id || !boxes_overlap(t, o)) continue;
+    const bool same_plane = coplanar(t.poly.support, o.poly.support);
+    const std::size_t n = pieces.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (pieces[i].disabled) continue;
+      if (same_plane) {
+        if (coplanar_overlap(pieces[i].poly, o.poly)) cut_by_coplanar(pieces, i, o.poly, o.id < t.id);
+      } else {
+        cut_by_transverse(pieces, i, t.poly.support, o.poly);
+      }
+    }
+  }
+  return pieces;
+}
+
+/// Traces the last segment of a classification path: from `start` along axis
+/// k onto the piece's interior point x on t's plane. Adds crossings to w and
+/// collects in `delta` the transition at x of every polygon containing x
+/// (t and coplanar overlapping polygons), signed relative to t's orientation.
+/// `side` is the side of t's plane the path arrives from.
+bool trace_onto(const Soup& soup, const SoupPolygon& t, const Dyadic& start, int k, const Point& x, Wnv& w,
+                Wnv& delta, int& side) {
+  const Plane& S = t.poly.support;
+  side = classify(to_point(start), S);
+  if (side == 0) return false;
+  const Plane pa = dyadic_axis_plane(start, k);
+  const int dir = classify(x, pa);  // sign of x_k - start_k
+  if (dir == 0) return false;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const Plane l0 = dyadic_axis_plane(start, i), l1 = dyadic_axis_plane(start, j);
+  const Plane r0 = dir > 0 ? -pa : pa;
+  const Plane r1 = side > 0 ? -S : S;
+
+  const auto xa = approx(x);
+  std::array<double, 3> lo{}, hi{};
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = std::min(approx_coord(start, a), xa[a]) - 1e-6;
+    hi[a] = std::max(approx_coord(start, a), xa[a]) + 1e-6;
+  }
+  delta.assign(w.size(), 0);
+  delta[t.operand] += 1;
+  for (const SoupPolygon& p : soup) {
+    if (p.id == t.id) continue;
+    if (p.hi[0] < lo[0] || p.lo[0] > hi[0] || p.hi[1] < lo[1] || p.lo[1] > hi[1] || p.hi[2] < lo[2] ||
+        p.lo[2] > hi[2])
+      continue;
+    if (coplanar(p.poly.support, S)) {
+      const int loc = locate(p.poly, x);
+      if (loc == 0) return false;
+      if (loc < 0) delta[p.operand] += same_orientation(p.poly.support, S) ? 1 : -1;
+      continue;
+    }
+    const SegmentHit h = intersect_segment(l0, l1, r0, r1, p.poly, nullptr);
+    switch (h.kind) {
+      case LineHit::Miss:
+        break;
+      case LineHit::Boundary:
+        return false;
+      case LineHit::Interior:
+        if (h.at_endpoint) return false;
+        w[p.operand] -= dir * p.poly.support.normal(k).sign();
+        break;
+      case LineHit::InPlane: {
+        std::vector<Plane> cons{r0, r1};
+        cons.insert(cons.end(), p.poly.edges.begin(), p.poly.edges.end());
+        if (line_region_nonempty(l0, l1, cons)) return false;
+        break;
+      }
+    }
+  }
+  return true;
+}
+
+/// Deterministic pseudo-random weights for alternative interior points.
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+/// Classifies one enabled piece of t: returns false if no valid path was
+/// found (never happens for non-degenerate pieces in practice).
+bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f, std::uint64_t seed, Wnv& w_front,
+                    Wnv& w_back) {
+  const Plane& S = t.poly.support;
+  const int k = dominant_axis(S);
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  std::vector<std::array<double, 3>> verts;
+  verts.reserve(f.vertices.size());
+  for (const Point& v : f.vertices) verts.push_back(approx(v));
+
+  Wnv w, delta;
+  for (int attempt = 0; attempt < 24; ++attempt) {
+    // Interior guess: the centroid first, then random convex combinations.
+    double ci = 0, cj = 0, total = 0;
+    for (std::size_t v = 0; v < verts.size(); ++v) {
+      const double weight =
+          attempt < 2 ? 1.0 : 0.05 + static_cast<double>(mix(seed * 131 + attempt * 17 + v) >> 11) * 0x1p-53;
+      ci += weight * verts[v][i];
+      cj += weight * verts[v][j];
+      total += weight;
+    }
+    ci /= total;
+    cj /= total;
+    // Snap to the coarsest dyadic grid whose point still lies strictly inside.
+    for (int s = 7 + attempt / 4; s <= kMaxDyadicShift; ++s) {
+      Dyadic target = with_shift(pb.ref, std::max(s, pb.ref.shift));
+      const int shift = target.shift;
+      target.num[i] = static_cast<std::int64_t>(std::nearbyint(std::ldexp(ci, shift)));
+      target.num[j] = static_cast<std::int64_t>(std::nearbyint(std::ldexp(cj, shift)));
+      const Plane ai = dyadic_axis_plane(target, i), aj = dyadic_axis_plane(target, j);
+      const std::optional<Point> x = intersect(ai, aj, S);
+      if (!x || locate(f, *x) >= 0) continue;
+      const std::array<int, 3> order = attempt % 2 == 0 ? std::array<int, 3>{i, j, k} : std::array<int, 3>{j, i, k};
+      w = pb.ref_w;
+      int side = 0;
+      if (!trace_path(pb.soup, pb.ref, target, order, w)) break;
+      if (!trace_onto(pb.soup, t, target, k, *x, w, delta, side)) break;
+      w_front = w;
+      w_back = w;
+      for (std::size_t o = 0; o < w.size(); ++o) {
+        if (side > 0) {
+          w_back[o] += delta[o];
+        } else {
+          w_front[o] -= delta[o];
+        }
+      }
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<OutputPolygon>& out) {
+  Wnv w_front, w_back;
+  for (const SoupPolygon& t : pb.soup) {
+    const std::vector<Piece> pieces = build_bsp(pb.soup, t);
+    for (std::size_t n = 0; n < pieces.size(); ++n) {
+      if (pieces[n].disabled) continue;
+      if (!classify_piece(pb, t, pieces[n].poly, (static_cast<std::uint64_t>(t.id) << 20) ^ n, w_front, w_back))
+        throw Error("ember: could not classify a polygon piece (no non-degenerate trace path found); "
+                    "this input is too degenerate for the current implementation");
+      const bool in_front = ctx.inside(w_front), in_back = ctx.inside(w_back);
+      if (in_front == in_back) continue;
+      out.push_back({pieces[n].poly, t.id, t.operand, in_front});
+    }
+  }
+}
+
+}  // namespace ember::core

@@ -1,0 +1,90 @@
+#include "ember/core/quantize.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "ember/error.hpp"
+#include "ember/numbers/ratio.hpp"
+
+namespace ember {
+
+namespace {
+double coord(const Vec3d& p, int i) { return i == 0 ? p.x : (i == 1 ? p.y : p.z); }
+}  // namespace
+
+Quantizer Quantizer::fit(std::span<const Vec3d> points) {
+  if (points.empty()) return Quantizer{};
+  Vec3d lo = points[0], hi = points[0];
+  for (const Vec3d& p : points) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw Error("non-finite vertex coordinate (NaN or infinity); every coordinate must be a finite number");
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  return fit_box(lo, hi);
+}
+
+Quantizer Quantizer::fit_box(const Vec3d& lo, const Vec3d& hi) {
+  Quantizer q;
+  double half = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double a = coord(lo, i), b = coord(hi, i);
+    if (!std::isfinite(a) || !std::isfinite(b) || a > b) throw Error("invalid bounding box for quantization");
+    // (b - a) may overflow for extreme inputs; halve first.
+    half = std::max(half, b / 2 - a / 2);
+  }
+  // Largest k with (half + grid spacing) * 2^k <= kLimit - 1: the centre is
+  // rounded to the grid (<= 1/2 unit off) and each point rounds by <= 1/2 unit.
+  int k = 0;
+  if (half > 0) {
+    k = static_cast<int>(std::floor(std::log2(static_cast<double>(kLimit - 2) / half)));
+    while (std::ldexp(half, k) > static_cast<double>(kLimit - 2)) --k;
+    while (std::ldexp(half, k + 1) <= static_cast<double>(kLimit - 2)) ++k;
+  } else {
+    k = 0;  // a single point: any scale works, keep the identity
+  }
+  // Keep the grid fine enough but representable: 2^k must be a normal double
+  // and centre * 2^k must fit the int64 arithmetic below.
+  k = std::clamp(k, -1000, 1000);
+  q.k_ = k;
+  for (int i = 0; i < 3; ++i) {
+    const double mid = coord(lo, i) / 2 + coord(hi, i) / 2;
+    const double c = std::nearbyint(std::ldexp(mid, k));
+    if (!(std::fabs(c) < 9.0e18)) throw Error("coordinates too large to quantize: the model is too far from the origin for its size");
+    q.c_[i] = static_cast<std::int64_t>(c);
+  }
+  return q;
+}
+
+IntPoint Quantizer::quantize(const Vec3d& p) const {
+  std::int64_t out[3];
+  for (int i = 0; i < 3; ++i) {
+    const double v = coord(p, i);
+    if (!std::isfinite(v)) throw Error("non-finite vertex coordinate (NaN or infinity)");
+    const double g = std::nearbyint(std::ldexp(v, k_));
+    // |g - c| <= kLimit for points inside the fitted box; anything else is a caller error.
+    const double rel = g - static_cast<double>(c_[i]);
+    if (!(std::fabs(rel) <= static_cast<double>(kLimit)))
+      throw Error("point outside the quantization box (was the map fitted to all operands?)");
+    out[i] = static_cast<std::int64_t>(g) - c_[i];
+  }
+  return IntPoint{out[0], out[1], out[2]};
+}
+
+Vec3d Quantizer::dequantize(const Point& p) const {
+  // x = (X + C W) / W * 2^-k: |C| < 2^63, W < 2^162 so C W < 2^225, sum < 2^226.
+  const Int<64> cx(c_[0]), cy(c_[1]), cz(c_[2]);
+  const auto x = ratio_to_double(p.x + cx * p.w, p.w);
+  const auto y = ratio_to_double(p.y + cy * p.w, p.w);
+  const auto z = ratio_to_double(p.z + cz * p.w, p.w);
+  return Vec3d{std::ldexp(x, -k_), std::ldexp(y, -k_), std::ldexp(z, -k_)};
+}
+
+Vec3d Quantizer::dequantize(const IntPoint& p) const {
+  return dequantize(to_point(p));
+}
+
+double Quantizer::grid_spacing() const { return std::ldexp(1.0, -k_); }
+
+}  // namespace ember

@@ -1,0 +1,42 @@
+#pragma once
+// The recursive EMBER solver: adaptive subdivision with reference-point
+// propagation (Section 4.2) down to leaves that resolve intersections with
+// polygon-local BSPs (4.3) and classify pieces by segment tracing (4.4).
+#include <functional>
+#include <vector>
+
+#include "core/soup.hpp"
+
+namespace ember::core {
+
+/// A piece of an input polygon that lies on the result's surface.
+struct OutputPolygon {
+  Polygon poly;
+  std::uint32_t id = 0;       ///< source polygon (input triangle) id
+  std::uint32_t operand = 0;
+  bool flip = false;          ///< emit with reversed orientation (in-out transition)
+};
+
+struct SolveContext {
+  std::size_t operands = 0;
+  std::function<bool(const Wnv&)> inside;  ///< indicator: WNV -> inside the result
+  std::size_t leaf_size = 24;              ///< subdivide while a subproblem has more polygons
+};
+
+/// A self-contained subproblem: polygons clipped to a closed integer box and a
+/// reference point strictly inside the box with its winding-number vector.
+struct Subproblem {
+  Box box;
+  Soup soup;
+  Dyadic ref;
+  Wnv ref_w;
+};
+
+/// Solves a subproblem; output polygons come in a deterministic order that
+/// does not depend on scheduling.
+std::vector<OutputPolygon> solve(Subproblem&& problem, const SolveContext& ctx);
+
+/// Leaf computation (exposed for tests).
+void solve_leaf(const Subproblem& problem, const SolveContext& ctx, std::vector<OutputPolygon>& out);
+
+}  // namespace ember::core

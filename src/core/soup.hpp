@@ -1,0 +1,56 @@
+#pragma once
+// Internal data of the Boolean core: the polygon soup of a subproblem, its
+// integer box, dyadic reference points and winding-number vectors.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "ember/geometry.hpp"
+
+namespace ember::core {
+
+/// A convex polygon of the soup, tagged with its operand (its winding-number
+/// transition vector is that operand's unit vector) and a global id that
+/// orders coincident polygons (Fig. 8: the lowest id emits an overlap).
+struct SoupPolygon {
+  Polygon poly;
+  std::uint32_t id = 0;       ///< input triangle index, unique
+  std::uint32_t operand = 0;  ///< which operand's surface this is
+  std::array<double, 3> lo{}, hi{};  ///< conservative bounding box (grid units)
+};
+using Soup = std::vector<SoupPolygon>;
+
+/// Recomputes the conservative box of a polygon from double approximations of
+/// its exact vertices. |coord| < 2^26 so approx() errs by < 2^-26 units; the
+/// margin 2^-16 covers it with room to spare.
+void update_bounds(SoupPolygon& p);
+
+/// Closed integer box [lo, hi] per axis.
+struct Box {
+  std::array<std::int64_t, 3> lo{}, hi{};
+};
+
+/// A point with dyadic rational coordinates num[i] / 2^shift. Reference points
+/// and trace paths use them: each coordinate is an axis plane (2^shift, -num)
+/// whose coefficients stay inside the plane budget (2^shift <= 2^36 < 2^53,
+/// |num| <= 2^(25+36) < 2^79), so every trace predicate is an ordinary
+/// three-plane point classified against a plane.
+struct Dyadic {
+  std::array<std::int64_t, 3> num{};
+  int shift = 0;
+};
+inline constexpr int kMaxDyadicShift = 36;
+
+/// The same point with a finer common denominator 2^s (s >= p.shift).
+Dyadic with_shift(const Dyadic& p, int s);
+/// Exact comparison of coordinate i with an integer: -1, 0, +1.
+int compare(const Dyadic& p, int axis, std::int64_t value);
+/// Axis plane x_axis = p[axis], positive side above.
+Plane dyadic_axis_plane(const Dyadic& p, int axis);
+Point to_point(const Dyadic& p);
+double approx_coord(const Dyadic& p, int axis);
+
+/// Winding-number vector: one entry per operand.
+using Wnv = std::vector<int>;
+
+}  // namespace ember::core

@@ -1,0 +1,156 @@
+// Adaptive subdivision (paper Section 4.2): split the box at an integer
+// position, clip every polygon into the children and carry a reference point
+// with a known winding-number vector into each child.
+#include <tbb/task_group.h>
+
+#include <algorithm>
+
+#include "core/solve.hpp"
+#include "core/trace.hpp"
+#include "ember/error.hpp"
+
+namespace ember::core {
+
+namespace {
+
+/// The axis to split and the position, or -1 when the box cannot be split
+/// (a split position must lie strictly inside, so the extent must be >= 2).
+int choose_split(const Box& box, std::int64_t& position) {
+  int axis = -1;
+  std::int64_t best = 1;
+  for (int a = 0; a < 3; ++a) {
+    const std::int64_t extent = box.hi[a] - box.lo[a];
+    if (extent > best) {
+      best = extent;
+      axis = a;
+    }
+  }
+  if (axis >= 0) position = box.lo[axis] + (box.hi[axis] - box.lo[axis]) / 2;
+  return axis;
+}
+
+/// A new reference point strictly inside the child that does not contain
+/// `ref`: first the projection across the split plane, nudged inside by a
+/// dyadic fraction (one axis-parallel segment); then paths that also move the
+/// other coordinates. Each candidate is validated by an exact trace in the
+/// parent, whose soup contains every polygon the path can meet.
+bool move_reference(const Subproblem& parent, const Box& child, int axis, std::int64_t split, Dyadic& ref,
+                    Wnv& w) {
+  const bool upper = child.lo[axis] == split;  // child lies above the split plane
+  // Offsets of odd/128 grid units: "generic" positions. Half-integers would be
+  // a poor choice: edges between grid points pass through them.
+  constexpr int kShift = 7;
+  constexpr std::int64_t kOdd[] = {45, 83, 19, 109, 67, 31, 97, 53};
+  for (const std::int64_t odd : kOdd) {
+    const int shift = std::max(kShift, parent.ref.shift);
+    Dyadic cand = with_shift(parent.ref, shift);
+    const std::int64_t offset = odd << (shift - kShift);
+    cand.num[axis] = (split << shift) + (upper ? offset : -offset);
+    Wnv trial = parent.ref_w;
+    if (trace_axis_segment(parent.soup, with_shift(parent.ref, shift), cand, axis, trial)) {
+      ref = cand;
+      w = std::move(trial);
+      return true;
+    }
+  }
+  // Rare: the line through the projection meets an edge. Move the other two
+  // coordinates by small dyadic amounts first (off that line), staying
+  // strictly inside, then cross the split plane.
+  const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+  for (int s = 3; s <= 12; ++s) {
+    for (int variant = 0; variant < 8; ++variant) {
+      const int shift = std::max(s + 2, parent.ref.shift);
+      Dyadic cand = with_shift(parent.ref, shift);
+      const std::int64_t unit = std::int64_t{1} << (shift - s);
+      // 1/2 ± 2^-s of a grid unit past the split plane: strictly inside the child.
+      cand.num[axis] = (split << shift) + (upper ? 1 : -1) * ((std::int64_t{1} << (shift - 1)) + unit * (variant % 3 - 1));
+      cand.num[b] += ((variant & 1) ? unit : -unit) * (1 + variant / 2);
+      cand.num[c] += ((variant & 2) ? unit : -unit) * (1 + variant / 4);
+      bool inside = true;
+      for (const int a : {b, c})
+        inside &= compare(cand, a, child.lo[a]) > 0 && compare(cand, a, child.hi[a]) < 0;
+      if (!inside) continue;
+      Wnv trial = parent.ref_w;
+      if (trace_path(parent.soup, parent.ref, cand, {b, c, axis}, trial)) {
+        ref = cand;
+        w = std::move(trial);
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+void split_soup(Soup&& soup, int axis, std::int64_t position, Soup& left, Soup& right) {
+  const Plane plane = axis_plane(axis, position);
+  Polygon neg, pos;
+  left.reserve(soup.size() / 2 + 8);
+  right.reserve(soup.size() / 2 + 8);
+  for (SoupPolygon& p : soup) {
+    // Cheap exact-enough rejection: the box is conservative.
+    if (p.hi[axis] < static_cast<double>(position)) {
+      left.push_back(std::move(p));
+      continue;
+    }
+    if (p.lo[axis] > static_cast<double>(position)) {
+      right.push_back(std::move(p));
+      continue;
+    }
+    switch (clip(p.poly, plane, neg, pos)) {
+      case ClipSide::Negative:
+      case ClipSide::On:  // polygons in the plane go to the lower child only
+        left.push_back(std::move(p));
+        break;
+      case ClipSide::Positive:
+        right.push_back(std::move(p));
+        break;
+      case ClipSide::Both: {
+        SoupPolygon l{neg, p.id, p.operand, {}, {}};
+        SoupPolygon r{pos, p.id, p.operand, {}, {}};
+        update_bounds(l);
+        update_bounds(r);
+        left.push_back(std::move(l));
+        right.push_back(std::move(r));
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<OutputPolygon> solve(Subproblem&& pb, const SolveContext& ctx) {
+  std::vector<OutputPolygon> out;
+  if (pb.soup.empty()) return out;
+  std::int64_t position = 0;
+  const int axis = pb.soup.size() > ctx.leaf_size ? choose_split(pb.box, position) : -1;
+  if (axis < 0) {
+    solve_leaf(pb, ctx, out);
+    return out;
+  }
+  Subproblem lower, upper;
+  lower.box = upper.box = pb.box;
+  lower.box.hi[axis] = position;
+  upper.box.lo[axis] = position;
+  // The reference point is strictly inside exactly one child (its coordinates
+  // are never integers); the other child gets a new one.
+  const bool ref_below = compare(pb.ref, axis, position) < 0;
+  Subproblem& keeps = ref_below ? lower : upper;
+  Subproblem& moves = ref_below ? upper : lower;
+  keeps.ref = pb.ref;
+  keeps.ref_w = pb.ref_w;
+  if (!move_reference(pb, moves.box, axis, position, moves.ref, moves.ref_w))
+    throw Error("ember: no valid reference path into a subproblem; the input is too degenerate for this version");
+  split_soup(std::move(pb.soup), axis, position, lower.soup, upper.soup);
+
+  std::vector<OutputPolygon> out_lower, out_upper;
+  tbb::task_group group;
+  group.run([&] { out_lower = solve(std::move(lower), ctx); });
+  out_upper = solve(std::move(upper), ctx);
+  group.wait();
+  out = std::move(out_lower);
+  out.insert(out.end(), std::make_move_iterator(out_upper.begin()), std::make_move_iterator(out_upper.end()));
+  return out;
+}
+
+}  // namespace ember::core

@@ -1,0 +1,109 @@
+#include "core/trace.hpp"
+
+#include <algorithm>
+#include <optional>
+#include <vector>
+
+namespace ember::core {
+
+namespace {
+
+struct Candidate {
+  Point point;
+  std::size_t plane;  // index of the constraint whose plane cuts the line here
+};
+
+/// The points where the line meets each transverse constraint's plane and that
+/// satisfy every constraint. The feasible part of the line is a closed
+/// interval (convex, bounded by a transverse constraint on each side), so it
+/// is non-empty iff it has an end point, and each end point is one of these.
+std::vector<Candidate> feasible_ends(const Plane& l0, const Plane& l1, std::span<const Plane> constraints) {
+  std::vector<Candidate> out;
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
+    const std::optional<Point> x = intersect(l0, l1, constraints[i]);
+    if (!x) continue;  // parallel to the line: checked through the other points
+    bool ok = true;
+    for (std::size_t j = 0; j < constraints.size() && ok; ++j)
+      if (j != i && classify(*x, constraints[j]) > 0) ok = false;
+    if (ok) out.push_back({*x, i});
+  }
+  return out;
+}
+
+}  // namespace
+
+bool line_region_nonempty(const Plane& l0, const Plane& l1, std::span<const Plane> constraints) {
+  return !feasible_ends(l0, l1, constraints).empty();
+}
+
+bool line_region_has_length(const Plane& l0, const Plane& l1, std::span<const Plane> constraints) {
+  const std::vector<Candidate> ends = feasible_ends(l0, l1, constraints);
+  // Two feasible end points are distinct iff one is off the other's plane.
+  for (std::size_t i = 0; i < ends.size(); ++i)
+    for (std::size_t j = i + 1; j < ends.size(); ++j)
+      if (classify(ends[i].point, constraints[ends[j].plane]) != 0) return true;
+  return false;
+}
+
+bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int axis, Wnv& w) {
+  const int dir = a.num[axis] < b.num[axis] ? 1 : (a.num[axis] > b.num[axis] ? -1 : 0);
+  if (dir == 0) return true;
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const Plane l0 = dyadic_axis_plane(a, u), l1 = dyadic_axis_plane(a, v);
+  // Segment = points of the line with r0 <= 0 and r1 <= 0.
+  const Plane pa = dyadic_axis_plane(a, axis), pb = dyadic_axis_plane(b, axis);
+  const Plane r0 = dir > 0 ? -pa : pa;
+  const Plane r1 = dir > 0 ? pb : -pb;
+
+  std::array<double, 3> lo{}, hi{};
+  for (int i = 0; i < 3; ++i) {
+    lo[i] = std::min(approx_coord(a, i), approx_coord(b, i));
+    hi[i] = std::max(approx_coord(a, i), approx_coord(b, i));
+  }
+  for (const SoupPolygon& p : soup) {
+    if (p.hi[0] < lo[0] || p.lo[0] > hi[0] || p.hi[1] < lo[1] || p.lo[1] > hi[1] || p.hi[2] < lo[2] ||
+        p.lo[2] > hi[2])
+      continue;
+    const SegmentHit h = intersect_segment(l0, l1, r0, r1, p.poly, nullptr);
+    switch (h.kind) {
+      case LineHit::Miss:
+        break;
+      case LineHit::Boundary:
+        return false;
+      case LineHit::Interior: {
+        if (h.at_endpoint) return false;
+        // Crossing along +axis through a polygon whose normal points along
+        // +axis goes from its back to its front: w drops by its transition.
+        const int n = p.poly.support.normal(axis).sign();
+        w[p.operand] -= dir * n;
+        break;
+      }
+      case LineHit::InPlane: {
+        std::vector<Plane> cons;
+        cons.reserve(p.poly.edges.size() + 2);
+        cons.push_back(r0);
+        cons.push_back(r1);
+        cons.insert(cons.end(), p.poly.edges.begin(), p.poly.edges.end());
+        if (line_region_nonempty(l0, l1, cons)) return false;
+        break;
+      }
+    }
+  }
+  return true;
+}
+
+bool trace_path(const Soup& soup, const Dyadic& a, const Dyadic& b, const std::array<int, 3>& order, Wnv& w) {
+  const int s = std::max(a.shift, b.shift);
+  Dyadic cur = with_shift(a, s);
+  const Dyadic end = with_shift(b, s);
+  for (const int axis : order) {
+    if (cur.num[axis] == end.num[axis]) continue;
+    Dyadic next = cur;
+    next.num[axis] = end.num[axis];
+    if (!trace_axis_segment(soup, cur, next, axis, w)) return false;
+    cur = next;
+  }
+  return true;
+}
+
+}  // namespace ember::core

@@ -1,0 +1,30 @@
+#pragma once
+// Winding-number tracing along axis-parallel segments between dyadic points
+// (paper Sections 3.4, 4.2.2 and 4.4). A trace either adds the exact signed
+// crossings of every polygon to a winding-number vector, or reports that the
+// segment meets some polygon degenerately (at an edge or vertex, at a segment
+// end, or touching it in its plane): then the caller chooses another path.
+// There are no tolerances: every decision is an exact predicate.
+#include <span>
+
+#include "core/soup.hpp"
+
+namespace ember::core {
+
+/// Does the part of line (l0, l1) where every constraint classifies <= 0 have a
+/// point? Each constraint not parallel to the line bounds it on one side; at
+/// least one must be transverse.
+bool line_region_nonempty(const Plane& l0, const Plane& l1, std::span<const Plane> constraints);
+/// Same, but the region must have positive length (not a single point).
+bool line_region_has_length(const Plane& l0, const Plane& l1, std::span<const Plane> constraints);
+
+/// Adds to w the winding-number change from a to b, two dyadic points with the
+/// same shift that differ only in coordinate `axis`. Returns false when the
+/// segment meets a polygon degenerately; w is then unspecified.
+bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int axis, Wnv& w);
+
+/// Axis-parallel path a -> b changing coordinates in the given order (each
+/// segment moves one coordinate). Same contract as trace_axis_segment.
+bool trace_path(const Soup& soup, const Dyadic& a, const Dyadic& b, const std::array<int, 3>& order, Wnv& w);
+
+}  // namespace ember::core
