@@ -1,0 +1,52 @@
+#pragma once
+// Reading and writing meshes in OBJ, STL (binary and ASCII), OFF and PLY.
+//
+// Readers take the whole file as bytes; `name` only appears in error messages.
+// Every malformed input ends in an ember::Error naming the file and the line
+// (text formats) or byte offset (binary formats) and what was wrong; a reader
+// never returns a mesh that silently differs from the file.
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "ember/mesh.hpp"
+
+namespace ember {
+
+enum class MeshFormat { Obj, Stl, Off, Ply };
+
+/// Format chosen by file extension (case-insensitive); throws ember::Error for
+/// an unknown extension, listing the supported ones.
+MeshFormat format_from_path(const std::filesystem::path& path);
+
+/// Reads a mesh file; the format follows the extension (STL ASCII/binary and
+/// PLY ascii/binary are told apart by content).
+Mesh read_mesh(const std::filesystem::path& path);
+/// Writes a mesh; the format follows the extension (STL: binary, PLY: binary
+/// little endian). Throws ember::Error when the file cannot be written.
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path);
+
+/// OBJ: polygons with (negative) indices in v, v/vt, v//vn, v/vt/vn form;
+/// texture, normal, group, material and other statements are ignored.
+Mesh read_obj(std::string_view bytes, std::string_view name);
+/// STL, binary or ASCII (detected by size and content). STL stores a triangle
+/// soup; identical positions are merged into one vertex (+0.0 == -0.0).
+Mesh read_stl(std::string_view bytes, std::string_view name);
+/// OFF with optional ST/C/N prefixes in the header and per-face colors.
+Mesh read_off(std::string_view bytes, std::string_view name);
+/// PLY ascii, binary_little_endian or binary_big_endian with any properties.
+Mesh read_ply(std::string_view bytes, std::string_view name);
+/// Reads in-memory bytes in the given format.
+Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name);
+
+/// OBJ with shortest round-trip decimal coordinates (reads back bit-exact).
+std::string write_obj(const Mesh& mesh);
+/// Binary STL: faces fan-triangulated, float coordinates, normals from positions.
+std::string write_stl(const Mesh& mesh);
+/// OFF with shortest round-trip decimal coordinates.
+std::string write_off(const Mesh& mesh);
+/// Binary little-endian PLY with double coordinates (reads back bit-exact).
+std::string write_ply(const Mesh& mesh);
+std::string write_mesh(const Mesh& mesh, MeshFormat format);
+
+}  // namespace ember

@@ -1,0 +1,88 @@
+// File-level entry points: choose the format by extension, read the whole
+// file into memory (the parsers work on one contiguous buffer) and write.
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include "ember/error.hpp"
+#include "ember/io/mesh_io.hpp"
+
+namespace ember {
+namespace {
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+std::string read_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw Error(path.string() + ": is a directory, not a mesh file");
+  File f(std::fopen(path.c_str(), "rb"));
+  if (!f) throw Error(path.string() + ": cannot open for reading: " + std::strerror(errno));
+  std::string data;
+  char buf[1 << 16];
+  // Size from the file when known, so large files are read with one allocation.
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec) data.reserve(static_cast<std::size_t>(size));
+  for (;;) {
+    const std::size_t got = std::fread(buf, 1, sizeof buf, f.get());
+    data.append(buf, got);
+    if (got < sizeof buf) break;
+  }
+  if (std::ferror(f.get())) throw Error(path.string() + ": read error: " + std::strerror(errno));
+  return data;
+}
+
+}  // namespace
+
+MeshFormat format_from_path(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  if (ext == ".obj") return MeshFormat::Obj;
+  if (ext == ".stl") return MeshFormat::Stl;
+  if (ext == ".off") return MeshFormat::Off;
+  if (ext == ".ply") return MeshFormat::Ply;
+  throw Error(path.string() + ": unknown mesh file extension '" + path.extension().string() +
+              "' (supported: .obj, .stl, .off, .ply)");
+}
+
+Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name) {
+  switch (format) {
+    case MeshFormat::Obj: return read_obj(bytes, name);
+    case MeshFormat::Stl: return read_stl(bytes, name);
+    case MeshFormat::Off: return read_off(bytes, name);
+    case MeshFormat::Ply: return read_ply(bytes, name);
+  }
+  throw Error(std::string(name) + ": invalid mesh format value");
+}
+
+Mesh read_mesh(const std::filesystem::path& path) {
+  const MeshFormat format = format_from_path(path);
+  const std::string data = read_file(path);
+  return read_mesh(data, format, path.string());
+}
+
+std::string write_mesh(const Mesh& mesh, MeshFormat format) {
+  switch (format) {
+    case MeshFormat::Obj: return write_obj(mesh);
+    case MeshFormat::Stl: return write_stl(mesh);
+    case MeshFormat::Off: return write_off(mesh);
+    case MeshFormat::Ply: return write_ply(mesh);
+  }
+  throw Error("invalid mesh format value");
+}
+
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path) {
+  const std::string data = write_mesh(mesh, format_from_path(path));
+  File f(std::fopen(path.c_str(), "wb"));
+  if (!f) throw Error(path.string() + ": cannot open for writing: " + std::strerror(errno));
+  if (std::fwrite(data.data(), 1, data.size(), f.get()) != data.size())
+    throw Error(path.string() + ": write failed: " + std::strerror(errno));
+  // fclose flushes; a failure there (e.g. disk full) is a failed write too.
+  if (std::fclose(f.release()) != 0) throw Error(path.string() + ": write failed: " + std::strerror(errno));
+}
+
+}  // namespace ember

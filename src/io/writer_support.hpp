@@ -1,0 +1,47 @@
+#pragma once
+// Shared by the writers: shortest round-trip number formatting and a check
+// that the mesh is well-formed before any bytes are produced, so a broken
+// mesh ends in an ember::Error instead of a file that other tools misread.
+#include <charconv>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "ember/error.hpp"
+#include "ember/mesh.hpp"
+
+namespace ember::io_detail {
+
+/// Appends the shortest decimal that reads back to exactly `v`.
+inline void append_real(std::string& out, double v) {
+  char buf[32];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
+inline void append_uint(std::string& out, std::uint64_t v) {
+  char buf[24];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
+inline void check_mesh_for_writing(const Mesh& mesh, std::string_view format) {
+  const auto fail = [&](const std::string& what) {
+    throw Error("cannot write " + std::string(format) + ": " + what);
+  };
+  if (mesh.face_offsets.empty() || mesh.face_offsets.front() != 0) fail("face_offsets must start with 0");
+  if (mesh.face_offsets.back() != mesh.indices.size())
+    fail("face_offsets ends at " + std::to_string(mesh.face_offsets.back()) + " but there are " +
+         std::to_string(mesh.indices.size()) + " indices");
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    if (mesh.face_offsets[f + 1] < mesh.face_offsets[f] + 3)
+      fail("face " + std::to_string(f) + " has fewer than 3 vertices");
+  }
+  for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
+    if (mesh.indices[i] >= mesh.vertices.size())
+      fail("index " + std::to_string(mesh.indices[i]) + " at position " + std::to_string(i) +
+           " is out of range (mesh has " + std::to_string(mesh.vertices.size()) + " vertices)");
+  }
+}
+
+}  // namespace ember::io_detail
