@@ -56,6 +56,7 @@ struct BooleanStats {
   std::size_t input_triangles = 0;
   std::size_t dropped_degenerate = 0;  ///< triangles that collapsed on the integer grid
   std::size_t output_polygons = 0;
+  std::size_t dropped_slivers = 0;  ///< exact output slivers whose rounded vertices have zero area
   double time_ms = 0;  ///< quantization + core + export
   int threads = 1;
 };

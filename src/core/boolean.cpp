@@ -85,8 +85,26 @@ struct Source {
   std::uint32_t operand, face;
 };
 
+/// Twice the area vector of a rounded face, from differences to its first
+/// vertex in extended precision, is exactly zero.
+bool rounded_area_is_zero(const Mesh& mesh, const std::vector<std::uint32_t>& face) {
+  using ld = long double;
+  const Vec3d& o = mesh.vertices[face[0]];
+  ld n[3] = {0, 0, 0};
+  for (std::size_t k = 1; k + 1 < face.size(); ++k) {
+    const Vec3d& a = mesh.vertices[face[k]];
+    const Vec3d& b = mesh.vertices[face[k + 1]];
+    const ld ax = ld(a.x) - o.x, ay = ld(a.y) - o.y, az = ld(a.z) - o.z;
+    const ld bx = ld(b.x) - o.x, by = ld(b.y) - o.y, bz = ld(b.z) - o.z;
+    n[0] += ay * bz - az * by;
+    n[1] += az * bx - ax * bz;
+    n[2] += ax * by - ay * bx;
+  }
+  return n[0] == 0 && n[1] == 0 && n[2] == 0;
+}
+
 Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer& q, const std::vector<Source>& sources,
-                 std::vector<Provenance>& provenance) {
+                 std::vector<Provenance>& provenance, std::size_t& dropped) {
   struct Key {
     std::uint64_t v[3];
     bool operator==(const Key& o) const { return std::memcmp(v, o.v, sizeof v) == 0; }
@@ -114,7 +132,12 @@ Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer&
       if (face.empty() || face.back() != it->second) face.push_back(it->second);
     }
     while (face.size() > 1 && face.front() == face.back()) face.pop_back();
-    if (face.size() < 3) continue;
+    // An exact sliver can round to collinear doubles; such a face has no area
+    // in the caller's units and is dropped rather than emitted degenerate.
+    if (face.size() < 3 || rounded_area_is_zero(mesh, face)) {
+      ++dropped;
+      continue;
+    }
     mesh.add_face(face);
     const Source& s = sources[p.id];
     provenance.push_back({s.operand, s.face});
@@ -202,7 +225,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     tbb::task_arena arena(threads);
     arena.execute([&] { polys = core::solve(std::move(root), ctx); });
   }
-  result.mesh = export_mesh(polys, q, sources, result.provenance);
+  result.mesh = export_mesh(polys, q, sources, result.provenance, result.stats.dropped_slivers);
   result.stats.output_polygons = result.mesh.face_count();
   result.stats.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -1,0 +1,86 @@
+#pragma once
+// Helpers shared by the core tests: run a Boolean and check the invariants
+// every result must satisfy (valid convex faces, provenance per face, stats).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <span>
+#include <vector>
+
+#include "ember/boolean.hpp"
+#include "ember/error.hpp"
+#include "support/mesh_checks.hpp"
+#include "support/shapes.hpp"
+
+namespace ember::test {
+
+/// Runs the Boolean and checks the structural invariants of the result:
+/// faces have >= 3 vertices, non-zero area and (with convex_tol >= 0) are
+/// convex and planar; one provenance entry per face with indices in range;
+/// stats.output_polygons matches.
+inline BooleanResult run_checked(std::span<const Mesh> ops, Operation op, const BooleanOptions& opt = {},
+                                 double convex_tol = -1) {
+  BooleanResult r = boolean(ops, op, opt);
+  EXPECT_EQ(face_problems(r.mesh, convex_tol), "");
+  EXPECT_EQ(r.provenance.size(), r.mesh.face_count());
+  for (const Provenance& p : r.provenance) {
+    EXPECT_LT(p.operand, ops.size());
+    if (p.operand < ops.size()) {
+      EXPECT_LT(p.face, ops[p.operand].face_count());
+    }
+  }
+  EXPECT_EQ(r.stats.output_polygons, r.mesh.face_count());
+  return r;
+}
+inline BooleanResult run_checked(std::initializer_list<Mesh> ops, Operation op, const BooleanOptions& opt = {},
+                                 double convex_tol = -1) {
+  return run_checked(std::span<const Mesh>(ops.begin(), ops.size()), op, opt, convex_tol);
+}
+
+/// Options with a custom indicator.
+inline BooleanOptions with_indicator(Indicator f) {
+  BooleanOptions o;
+  o.indicator = std::move(f);
+  return o;
+}
+inline BooleanOptions with_min_k(int k) {
+  BooleanOptions o;
+  o.min_k = k;
+  return o;
+}
+
+/// For inputs with exact (small integer / dyadic) coordinates: every output
+/// polygon lies exactly in the supporting plane of the input face named by its
+/// provenance, and its normal is parallel to that face's normal (same or
+/// opposite direction). Returns the number of violating polygons.
+inline int provenance_plane_violations(std::span<const Mesh> ops, const BooleanResult& r) {
+  int bad = 0;
+  for (std::size_t f = 0; f < r.mesh.face_count() && f < r.provenance.size(); ++f) {
+    const Provenance& pv = r.provenance[f];
+    if (pv.operand >= ops.size() || pv.face >= ops[pv.operand].face_count()) {
+      ++bad;
+      continue;
+    }
+    const Mesh& src = ops[pv.operand];
+    auto sf = src.face(pv.face);
+    Vec3l p0 = to_l(src.vertices[sf[0]]);
+    Vec3l n = cross(to_l(src.vertices[sf[1]]) - p0, to_l(src.vertices[sf[2]]) - p0);
+    bool ok = true;
+    auto of = r.mesh.face(f);
+    for (std::uint32_t i : of) ok = ok && dot(n, to_l(r.mesh.vertices[i]) - p0) == 0;
+    Vec3l on;
+    for (std::size_t k = 0; k < of.size(); ++k)
+      on = on + cross(to_l(r.mesh.vertices[of[k]]), to_l(r.mesh.vertices[of[(k + 1) % of.size()]]));
+    Vec3l c = cross(n, on);
+    ok = ok && c.x == 0 && c.y == 0 && c.z == 0;
+    bad += !ok;
+  }
+  return bad;
+}
+
+/// Milliseconds since `t0`.
+inline double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace ember::test
