@@ -271,9 +271,17 @@ constexpr Int<A + B> operator*(const Int<A>& a, const Int<B>& b) {
   static_assert(R <= kMaxBits, "product exceeds the 256-bit budget");
   if constexpr (R <= 63) {
     return Int<R>(static_cast<std::int64_t>(a.raw()) * static_cast<std::int64_t>(b.raw()));
-  } else if constexpr (R <= 127 && A <= 63 && B <= 63) {
-    return Int<R>(static_cast<i128>(a.raw()) * static_cast<i128>(b.raw()));
+  } else if constexpr (R <= 127) {
+    // The true product fits i128, so the product mod 2^128 (computed unsigned to
+    // avoid signed overflow in discarded high bits) is exact, whatever limbs the
+    // operands use. Replaces the limb loop for e.g. Int<106>*Int<21>.
+    const u128 p = static_cast<u128>(static_cast<i128>(a.raw())) * static_cast<u128>(static_cast<i128>(b.raw()));
+    return Int<R>::assume_bound(Int<127>(static_cast<i128>(p)));
   } else {
+    // (A branch-free variant, correcting an unsigned product of the two's-complement
+    // limbs by masked subtractions of the other operand, measured 10-40% slower for
+    // Int<53>*Int<188>, Int<79>*Int<162> and the classify dot product (faster only for
+    // Int<106>*Int<79>): its borrow chains serialize, these sign branches are cheap.)
     // Schoolbook product of magnitudes, then the sign. Magnitudes need ceil(A/64)
     // limbs; the result needs ceil(R/64) limbs and cannot carry past them.
     constexpr int LA = detail::mag_limbs(A), LB = detail::mag_limbs(B);
@@ -304,9 +312,23 @@ constexpr bool operator==(const Int<A>& a, const Int<B>& b) {
     if (a.limb(i) != b.limb(i)) return false;
   return true;
 }
+/// -1, 0 or +1. Compares limbs directly (top limb signed, the rest unsigned) so
+/// no wider difference is formed: works up to Int<255> and needs no carry chain.
 template <int A, int B>
 constexpr int compare(const Int<A>& a, const Int<B>& b) {
-  return (a - b).sign();
+  if constexpr (Int<A>::limbs == 1 && Int<B>::limbs == 1) {
+    return (a.raw() > b.raw()) - (a.raw() < b.raw());
+  } else if constexpr (Int<A>::limbs <= 2 && Int<B>::limbs <= 2) {
+    const i128 x = a.raw(), y = b.raw();
+    return (x > y) - (x < y);
+  } else {
+    constexpr int L = detail::max_int(Int<A>::limbs, Int<B>::limbs);
+    const auto ta = static_cast<std::int64_t>(a.limb(L - 1)), tb = static_cast<std::int64_t>(b.limb(L - 1));
+    if (ta != tb) return ta < tb ? -1 : 1;
+    for (int i = L - 2; i >= 0; --i)
+      if (a.limb(i) != b.limb(i)) return a.limb(i) < b.limb(i) ? -1 : 1;
+    return 0;
+  }
 }
 template <int A, int B>
 constexpr bool operator<(const Int<A>& a, const Int<B>& b) {
