@@ -5,12 +5,14 @@
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <string>
 #include <unordered_map>
 
+#include "core/indicator.hpp"
 #include "core/solve.hpp"
 #include "ember/core/quantize.hpp"
 #include "ember/error.hpp"
@@ -151,6 +153,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   const auto start = std::chrono::steady_clock::now();
   if (operands.empty()) throw Error("boolean: no operands given; pass at least one mesh");
   if (options.threads < 0) throw Error("boolean: threads must be >= 0 (0 = all hardware threads)");
+  if (!options.solid.empty() && options.solid.size() != operands.size())
+    throw Error("boolean: options.solid must be empty or have one entry per operand (" +
+                std::to_string(operands.size()) + "), got " + std::to_string(options.solid.size()));
   const Indicator indicator = options.indicator ? options.indicator : indicator_for(op, operands.size(), options.min_k);
   for (std::size_t i = 0; i < operands.size(); ++i) validate(operands[i], i);
 
@@ -206,7 +211,10 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     }
   }
 
-  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+  // More threads than the machine has only oversubscribe it (and make TBB
+  // warn on stderr): clamp. Results do not depend on the count.
+  const int hardware = tbb::info::default_concurrency();
+  const int threads = options.threads > 0 ? std::min(options.threads, hardware) : hardware;
   result.stats.threads = threads;
   std::vector<core::OutputPolygon> polys;
   if (!soup.empty()) {
@@ -222,6 +230,12 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     core::SolveContext ctx;
     ctx.operands = operands.size();
     ctx.inside = [&indicator](const core::Wnv& w) { return indicator(WindingVector(w.data(), w.size())); };
+    if (!options.indicator)
+      ctx.inside_flags = [op, k = options.min_k](const std::vector<char>& f) {
+        return core::inside_by_flags(op, k, f);
+      };
+    ctx.solid.assign(operands.size(), options.all_solid ? 1 : 0);
+    for (std::size_t i = 0; i < options.solid.size(); ++i) ctx.solid[i] |= options.solid[i] ? 1 : 0;
     tbb::task_arena arena(threads);
     arena.execute([&] { polys = core::solve(std::move(root), ctx); });
   }

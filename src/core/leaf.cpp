@@ -77,10 +77,25 @@ void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& s
   pieces.push_back({std::move(p), pieces[i].disabled});
 }
 
-std::vector<Piece> build_bsp(const Soup& soup, const SoupPolygon& t) {
+/// Can polygon o meet t's plane at all? (All vertices strictly on one side: no.)
+bool touches_plane(const Polygon& o, const Plane& plane) {
+  bool neg = false, pos = false;
+  for (const Point& v : o.vertices) {
+    const int s = classify(v, plane);
+    if (s == 0) return true;
+    neg |= s < 0;
+    pos |= s > 0;
+  }
+  return neg && pos;
+}
+
+std::vector<Piece> build_bsp(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx) {
   std::vector<Piece> pieces{{t.poly, false}};
   for (const SoupPolygon& o : soup) {
     if (o.id == t.id || !boxes_overlap(t, o)) continue;
+    // Two polygons of one solid operand never cross or overlap (NSI).
+    if (o.operand == t.operand && ctx.solid[t.operand]) continue;
+    if (!touches_plane(o.poly, t.poly.support)) continue;
     const bool same_plane = coplanar(t.poly.support, o.poly.support);
     const std::size_t n = pieces.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -219,7 +234,7 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
 void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<OutputPolygon>& out) {
   Wnv w_front, w_back;
   for (const SoupPolygon& t : pb.soup) {
-    const std::vector<Piece> pieces = build_bsp(pb.soup, t);
+    const std::vector<Piece> pieces = build_bsp(pb.soup, t, ctx);
     for (std::size_t n = 0; n < pieces.size(); ++n) {
       if (pieces[n].disabled) continue;
       if (!classify_piece(pb, t, pieces[n].poly, (static_cast<std::uint64_t>(t.id) << 20) ^ n, w_front, w_back))

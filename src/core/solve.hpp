@@ -20,8 +20,21 @@ struct OutputPolygon {
 struct SolveContext {
   std::size_t operands = 0;
   std::function<bool(const Wnv&)> inside;  ///< indicator: WNV -> inside the result
-  std::size_t leaf_size = 24;              ///< subdivide while a subproblem has more polygons
+  /// The same indicator on "inside operand i" flags (w_i != 0), when it
+  /// depends on nothing else (every built-in operation); enables pruning.
+  std::function<bool(const std::vector<char>&)> inside_flags;
+  /// Per operand: solid (closed, outward, no self-intersections, no nested or
+  /// touching components: w in {0, 1}). Enables the shortcuts of Fig. 11.
+  std::vector<char> solid;
+  std::size_t leaf_size = 24;  ///< subdivide while a subproblem has more polygons
 };
+
+struct Subproblem;
+/// Early termination (Section 4.5.2): true when every winding-number vector
+/// reachable inside the subproblem maps to the same side of the indicator,
+/// so it cannot contribute output. Operands without polygons in the
+/// subproblem keep the reference point's winding number.
+bool indicator_constant(const Subproblem& problem, const SolveContext& ctx);
 
 /// A self-contained subproblem: polygons clipped to a closed integer box and a
 /// reference point strictly inside the box with its winding-number vector.

@@ -117,11 +117,57 @@ void split_soup(Soup&& soup, int axis, std::int64_t position, Soup& left, Soup& 
   }
 }
 
+/// Fig. 11 with a solid operand: if every polygon belongs to one solid
+/// operand o, each has w_o = 0 in front and 1 behind, and all other winding
+/// numbers equal the reference point's (nothing else is in the box), so all
+/// polygons share one classification and no trace is needed.
+bool emit_single_solid(Subproblem& pb, const SolveContext& ctx, std::vector<OutputPolygon>& out) {
+  const std::uint32_t o = pb.soup.front().operand;
+  if (!ctx.solid[o]) return false;
+  for (const SoupPolygon& p : pb.soup)
+    if (p.operand != o) return false;
+  Wnv front = pb.ref_w, back = pb.ref_w;
+  front[o] = 0;
+  back[o] = 1;
+  const bool in_front = ctx.inside(front), in_back = ctx.inside(back);
+  if (in_front == in_back) return true;
+  out.reserve(pb.soup.size());
+  for (SoupPolygon& p : pb.soup) out.push_back({std::move(p.poly), p.id, p.operand, in_front});
+  return true;
+}
+
 }  // namespace
+
+bool indicator_constant(const Subproblem& pb, const SolveContext& ctx) {
+  if (!ctx.inside_flags) return false;
+  std::vector<char> present(ctx.operands, 0);
+  for (const SoupPolygon& p : pb.soup) present[p.operand] = 1;
+  std::vector<std::size_t> free;
+  std::vector<char> flags(ctx.operands);
+  for (std::size_t i = 0; i < ctx.operands; ++i) {
+    flags[i] = pb.ref_w[i] != 0;
+    if (present[i]) free.push_back(i);
+  }
+  constexpr std::size_t kMaxEnumerated = 12;  // 4096 evaluations at most
+  if (free.size() > kMaxEnumerated) return false;
+  bool first = true, value = false;
+  for (std::uint32_t mask = 0; mask < (1u << free.size()); ++mask) {
+    for (std::size_t b = 0; b < free.size(); ++b) flags[free[b]] = (mask >> b) & 1;
+    const bool v = ctx.inside_flags(flags);
+    if (first) {
+      value = v;
+      first = false;
+    } else if (v != value) {
+      return false;
+    }
+  }
+  return true;
+}
 
 std::vector<OutputPolygon> solve(Subproblem&& pb, const SolveContext& ctx) {
   std::vector<OutputPolygon> out;
-  if (pb.soup.empty()) return out;
+  if (pb.soup.empty() || indicator_constant(pb, ctx)) return out;
+  if (emit_single_solid(pb, ctx, out)) return out;
   std::int64_t position = 0;
   const int axis = pb.soup.size() > ctx.leaf_size ? choose_split(pb.box, position) : -1;
   if (axis < 0) {
