@@ -58,28 +58,29 @@ struct PointHash {
 /// other (on the quantized positions, degenerate triangles included, so the
 /// test describes the surface the core actually sees). Zero means closed.
 std::size_t count_open_edges(const std::vector<std::array<IntPoint, 3>>& triangles) {
-  struct EdgeHash {
-    std::size_t operator()(const std::pair<IntPoint, IntPoint>& e) const {
-      return PointHash{}(e.first) * 31 + PointHash{}(e.second);
-    }
-  };
-  std::unordered_map<std::pair<IntPoint, IntPoint>, int, EdgeHash> balance;
-  auto less = [](const IntPoint& a, const IntPoint& b) {
-    return a.x != b.x ? a.x < b.x : (a.y != b.y ? a.y < b.y : a.z < b.z);
-  };
-  for (const auto& t : triangles)
+  // Weld equal positions to ids, then balance directed edges by sorting.
+  std::unordered_map<IntPoint, std::uint32_t, PointHash> ids;
+  ids.reserve(triangles.size());
+  std::vector<std::pair<std::uint64_t, int>> edges;
+  edges.reserve(3 * triangles.size());
+  for (const auto& t : triangles) {
+    std::uint32_t v[3];
+    for (int e = 0; e < 3; ++e) v[e] = ids.try_emplace(t[e], static_cast<std::uint32_t>(ids.size())).first->second;
     for (int e = 0; e < 3; ++e) {
-      const IntPoint& a = t[e];
-      const IntPoint& b = t[(e + 1) % 3];
+      const std::uint32_t a = v[e], b = v[(e + 1) % 3];
       if (a == b) continue;
-      if (less(a, b)) {
-        balance[{a, b}] += 1;
-      } else {
-        balance[{b, a}] -= 1;
-      }
+      edges.push_back(a < b ? std::pair{(std::uint64_t{a} << 32) | b, 1} : std::pair{(std::uint64_t{b} << 32) | a, -1});
     }
+  }
+  std::sort(edges.begin(), edges.end());
   std::size_t open = 0;
-  for (const auto& [edge, count] : balance) open += count != 0;
+  for (std::size_t i = 0; i < edges.size();) {
+    int balance = 0;
+    std::size_t j = i;
+    for (; j < edges.size() && edges[j].first == edges[i].first; ++j) balance += edges[j].second;
+    open += balance != 0;
+    i = j;
+  }
   return open;
 }
 
