@@ -9,6 +9,7 @@
 // is ever left behind (results are written to a temporary name and renamed).
 #include <CLI/CLI.hpp>
 
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -68,6 +69,18 @@ void print_stats(const ember::BooleanResult& r, const char* op) {
                r.stats.threads);
 }
 
+/// The library names inputs "operand i"; the user knows them by file name.
+/// Replaces a leading "operand i" (the whole number) with the i-th path.
+std::string name_operand(const std::string& msg, const std::vector<std::string>& inputs) {
+  const std::string key = "operand ";
+  if (msg.rfind(key, 0) != 0) return msg;
+  std::size_t index = 0;
+  const char* begin = msg.data() + key.size();
+  const auto [end, ec] = std::from_chars(begin, msg.data() + msg.size(), index);
+  if (ec != std::errc{} || index >= inputs.size()) return msg;
+  return inputs[index] + msg.substr(static_cast<std::size_t>(end - msg.data()));
+}
+
 struct BooleanArgs {
   std::vector<std::string> inputs;
   std::string output;
@@ -83,9 +96,7 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
   options.threads = a.threads;
   options.allow_open = a.allow_open;
   options.all_solid = a.assume_solid;
-  if (a.min_k > 0) {
-    if (op != ember::Operation::Union)
-      throw ember::Error("--min-k applies to 'union' only (the solid inside at least K operands)");
+  if (a.min_k > 0) {  // main() allows --min-k with union only
     op = ember::Operation::AtLeastK;
     options.min_k = a.min_k;
   }
@@ -97,18 +108,10 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
   try {
     r = ember::boolean(meshes, op, options);
   } catch (const ember::Error& e) {
-    // Name the file behind "operand i" so the message says what to fix.
-    std::string msg = e.what();
-    for (std::size_t i = 0; i < a.inputs.size(); ++i) {
-      const std::string key = "operand " + std::to_string(i);
-      if (msg.rfind(key, 0) == 0) {
-        msg = a.inputs[i] + msg.substr(key.size());
-        break;
-      }
-    }
-    throw ember::Error(msg);
+    throw ember::Error(name_operand(e.what(), a.inputs));
   }
-  for (const std::string& w : r.warnings) std::fprintf(stderr, "ember: warning: %s\n", w.c_str());
+  for (const std::string& w : r.warnings)
+    std::fprintf(stderr, "ember: warning: %s\n", name_operand(w, a.inputs).c_str());
   write_atomically(r.mesh, a.output);
   if (a.stats) print_stats(r, operation_name(op));
   return 0;
@@ -183,8 +186,14 @@ int main(int argc, char** argv) {
   }
   try {
     if (demo->parsed()) return run_demo(demo_dir, demo_threads);
-    for (const auto& [sub, op] : subs)
-      if (sub->parsed()) return run_boolean(op, args);
+    for (const auto& [sub, op] : subs) {
+      if (!sub->parsed()) continue;
+      if (args.min_k > 0 && op != ember::Operation::Union) {
+        std::fprintf(stderr, "ember: --min-k applies to 'union' only (the solid inside at least K inputs)\n");
+        return 2;
+      }
+      return run_boolean(op, args);
+    }
   } catch (const ember::Error& e) {
     std::fprintf(stderr, "ember: %s\n", e.what());
     return 1;

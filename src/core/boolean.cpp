@@ -205,7 +205,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       }
     }
     if (const std::size_t open = count_open_edges(triangles); open > 0) {
-      const std::string msg = operand_name(o) + " is not closed: " + std::to_string(open) +
+      const std::string msg = operand_name(o) + ": not closed: " + std::to_string(open) +
                               " edges are not matched by an opposite edge, so inside/outside is undefined";
       if (!options.allow_open) throw Error(msg + "; repair the mesh or allow open inputs (CLI: --allow-open)");
       result.warnings.push_back(msg + "; proceeding as requested, the result may have holes");
