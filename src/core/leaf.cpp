@@ -115,7 +115,7 @@ std::vector<Piece> build_bsp(const Soup& soup, const SoupPolygon& t, const Solve
 /// collects in `delta` the transition at x of every polygon containing x
 /// (t and coplanar overlapping polygons), signed relative to t's orientation.
 /// `side` is the side of t's plane the path arrives from.
-bool trace_onto(const Soup& soup, const SoupPolygon& t, const Dyadic& start, int k, const Point& x, Wnv& w,
+bool trace_onto(const Soup& soup, const SoupPolygon& t, const Dyadic& start, int k, const AxisPoint& x, Wnv& w,
                 Wnv& delta, int& side) {
   const Plane& S = t.poly.support;
   side = classify(to_point(start), S);
@@ -125,6 +125,7 @@ bool trace_onto(const Soup& soup, const SoupPolygon& t, const Dyadic& start, int
   if (dir == 0) return false;
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   const Plane l0 = dyadic_axis_plane(start, i), l1 = dyadic_axis_plane(start, j);
+  const AxisLine line = axis_line(start, k);
   const Plane r0 = dir > 0 ? -pa : pa;
   const Plane r1 = side > 0 ? -S : S;
 
@@ -147,7 +148,7 @@ bool trace_onto(const Soup& soup, const SoupPolygon& t, const Dyadic& start, int
       if (loc < 0) delta[p.operand] += same_orientation(p.poly.support, S) ? 1 : -1;
       continue;
     }
-    const SegmentHit h = intersect_segment(l0, l1, r0, r1, p.poly, nullptr);
+    const SegmentHit h = intersect_segment(line, r0, r1, p.poly);
     switch (h.kind) {
       case LineHit::Miss:
         break;
@@ -206,14 +207,13 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
       const int shift = target.shift;
       target.num[i] = static_cast<std::int64_t>(std::nearbyint(std::ldexp(ci, shift)));
       target.num[j] = static_cast<std::int64_t>(std::nearbyint(std::ldexp(cj, shift)));
-      const Plane ai = dyadic_axis_plane(target, i), aj = dyadic_axis_plane(target, j);
-      const std::optional<Point> x = intersect(ai, aj, S);
-      if (!x || locate(f, *x) >= 0) continue;
+      AxisPoint x;
+      if (!meet(axis_line(target, k), S, x) || locate(f, x) >= 0) continue;
       const std::array<int, 3> order = attempt % 2 == 0 ? std::array<int, 3>{i, j, k} : std::array<int, 3>{j, i, k};
       w = pb.ref_w;
       int side = 0;
       if (!trace_path(pb.soup, pb.ref, target, order, w)) break;
-      if (!trace_onto(pb.soup, t, target, k, *x, w, delta, side)) break;
+      if (!trace_onto(pb.soup, t, target, k, x, w, delta, side)) break;
       w_front = w;
       w_back = w;
       for (std::size_t o = 0; o < w.size(); ++o) {

@@ -44,6 +44,10 @@ Point to_point(const Dyadic& p) {
   return Point{PointXYZ(p.num[0]), PointXYZ(p.num[1]), PointXYZ(p.num[2]), PointW(std::int64_t{1} << p.shift)};
 }
 
+AxisLine axis_line(const Dyadic& p, int axis) {
+  return AxisLine{axis, DyadicNum(p.num[(axis + 1) % 3]), DyadicNum(p.num[(axis + 2) % 3]), p.shift};
+}
+
 double approx_coord(const Dyadic& p, int axis) { return std::ldexp(static_cast<double>(p.num[axis]), -p.shift); }
 
 }  // namespace ember::core

@@ -48,6 +48,8 @@ int compare(const Dyadic& p, int axis, std::int64_t value);
 /// Axis plane x_axis = p[axis], positive side above.
 Plane dyadic_axis_plane(const Dyadic& p, int axis);
 Point to_point(const Dyadic& p);
+/// The axis-parallel line through p along `axis`.
+AxisLine axis_line(const Dyadic& p, int axis);
 double approx_coord(const Dyadic& p, int axis);
 
 /// Winding-number vector: one entry per operand.

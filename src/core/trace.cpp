@@ -50,6 +50,7 @@ bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int 
   if (dir == 0) return true;
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
   const Plane l0 = dyadic_axis_plane(a, u), l1 = dyadic_axis_plane(a, v);
+  const AxisLine line = axis_line(a, axis);
   // Segment = points of the line with r0 <= 0 and r1 <= 0.
   const Plane pa = dyadic_axis_plane(a, axis), pb = dyadic_axis_plane(b, axis);
   const Plane r0 = dir > 0 ? -pa : pa;
@@ -64,7 +65,7 @@ bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int 
     if (p.hi[0] < lo[0] || p.lo[0] > hi[0] || p.hi[1] < lo[1] || p.lo[1] > hi[1] || p.hi[2] < lo[2] ||
         p.lo[2] > hi[2])
       continue;
-    const SegmentHit h = intersect_segment(l0, l1, r0, r1, p.poly, nullptr);
+    const SegmentHit h = intersect_segment(line, r0, r1, p.poly);
     switch (h.kind) {
       case LineHit::Miss:
         break;

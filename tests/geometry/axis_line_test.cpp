@@ -1,0 +1,105 @@
+// The reduced-width axis-line test must give exactly the answers of the
+// general (oracle-tested) intersect_segment on the same line.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "ember/geometry.hpp"
+
+namespace ember::test {
+namespace {
+
+Plane dyadic_plane(int axis, std::int64_t num, int shift) {
+  Plane p{0, 0, 0, -num};
+  (axis == 0 ? p.a : axis == 1 ? p.b : p.c) = std::int64_t{1} << shift;
+  return p;
+}
+
+struct Case {
+  AxisLine line;
+  Plane l0, l1, r0, r1;
+};
+
+/// A segment along `axis` through (U, V)/2^s from coordinate lo to hi.
+Case make_case(int axis, std::int64_t U, std::int64_t V, int s, std::int64_t lo, std::int64_t hi) {
+  Case c;
+  c.line = {axis, DyadicNum(U), DyadicNum(V), s};
+  c.l0 = dyadic_plane((axis + 1) % 3, U, s);
+  c.l1 = dyadic_plane((axis + 2) % 3, V, s);
+  c.r0 = -dyadic_plane(axis, lo, s);  // x >= lo
+  c.r1 = dyadic_plane(axis, hi, s);   // x <= hi
+  return c;
+}
+
+void expect_same(const Case& c, const Polygon& poly) {
+  const SegmentHit general = intersect_segment(c.l0, c.l1, c.r0, c.r1, poly, nullptr);
+  const SegmentHit fast = intersect_segment(c.line, c.r0, c.r1, poly);
+  ASSERT_EQ(static_cast<int>(general.kind), static_cast<int>(fast.kind));
+  if (general.kind != LineHit::InPlane) {
+    ASSERT_EQ(general.at_endpoint, fast.at_endpoint);
+  }
+}
+
+TEST(AxisLine, MatchesGeneralSegmentTestOnRandomTriangles) {
+  std::mt19937_64 rng(42);
+  const std::int64_t L = kCoordLimit;
+  std::uniform_int_distribution<std::int64_t> coord(-L, L);
+  int interior = 0, boundary = 0, endpoint = 0;
+  for (int it = 0; it < 4000; ++it) {
+    const IntPoint p[3] = {{coord(rng), coord(rng), coord(rng)}, {coord(rng), coord(rng), coord(rng)},
+                           {coord(rng), coord(rng), coord(rng)}};
+    const std::optional<Polygon> tri = make_triangle(p[0], p[1], p[2]);
+    if (!tri) continue;
+    const int axis = static_cast<int>(rng() % 3);
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    auto get = [](const IntPoint& q, int a) { return a == 0 ? q.x : (a == 1 ? q.y : q.z); };
+    const int s = static_cast<int>(rng() % 37);
+    std::int64_t U, V;
+    if (it % 3 == 0) {  // through a vertex: exact boundary hits
+      U = get(p[it % 3], u) << s;
+      V = get(p[it % 3], v) << s;
+    } else {  // through the centroid, rounded to the dyadic grid
+      U = ((get(p[0], u) + get(p[1], u) + get(p[2], u)) << s) / 3;
+      V = ((get(p[0], v) + get(p[1], v) + get(p[2], v)) << s) / 3;
+    }
+    // Segment ends: sometimes exactly at a vertex's height (endpoint hits).
+    std::int64_t lo = (-L) << s, hi = L << s;
+    if (it % 5 == 0) hi = get(p[it % 3], axis) << s;
+    const Case c = make_case(axis, U, V, s, lo, hi);
+    expect_same(c, *tri);
+    const SegmentHit h = intersect_segment(c.line, c.r0, c.r1, *tri);
+    interior += h.kind == LineHit::Interior;
+    boundary += h.kind == LineHit::Boundary;
+    endpoint += h.at_endpoint;
+  }
+  // The generator must exercise every outcome, or the comparison proves little.
+  EXPECT_GT(interior, 100);
+  EXPECT_GT(boundary, 100);
+  EXPECT_GT(endpoint, 10);
+}
+
+TEST(AxisLine, ParallelAndInPlaneLines) {
+  const Polygon tri = *make_triangle({0, 0, 0}, {12, 0, 0}, {0, 12, 0});  // z = 0
+  // Along x at z = 0 (in the plane) and at z = 1/2 (parallel, off it).
+  expect_same(make_case(0, 3, 0, 0, -20, 20), tri);
+  EXPECT_EQ(intersect_segment(AxisLine{0, DyadicNum(3), DyadicNum(0), 0}, -dyadic_plane(0, -20, 0),
+                              dyadic_plane(0, 20, 0), tri)
+                .kind,
+            LineHit::InPlane);
+  EXPECT_EQ(intersect_segment(AxisLine{0, DyadicNum(3), DyadicNum(1), 1}, -dyadic_plane(0, -40, 1),
+                              dyadic_plane(0, 40, 1), tri)
+                .kind,
+            LineHit::Miss);
+  // Along z through (1/4, 1/4): interior; through (6, 6): the hypotenuse.
+  EXPECT_EQ(intersect_segment(AxisLine{2, DyadicNum(1), DyadicNum(1), 2}, -dyadic_plane(2, -8, 2),
+                              dyadic_plane(2, 8, 2), tri)
+                .kind,
+            LineHit::Interior);
+  EXPECT_EQ(intersect_segment(AxisLine{2, DyadicNum(6), DyadicNum(6), 0}, -dyadic_plane(2, -8, 0),
+                              dyadic_plane(2, 8, 0), tri)
+                .kind,
+            LineHit::Boundary);
+}
+
+}  // namespace
+}  // namespace ember::test
