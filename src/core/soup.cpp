@@ -41,7 +41,9 @@ Plane dyadic_axis_plane(const Dyadic& p, int axis) {
 }
 
 Point to_point(const Dyadic& p) {
-  return Point{PointXYZ(p.num[0]), PointXYZ(p.num[1]), PointXYZ(p.num[2]), PointW(std::int64_t{1} << p.shift)};
+  Point pt{PointXYZ(p.num[0]), PointXYZ(p.num[1]), PointXYZ(p.num[2]), PointW(std::int64_t{1} << p.shift), {}};
+  detail::cache_approx(pt);
+  return pt;
 }
 
 AxisLine axis_line(const Dyadic& p, int axis) {

@@ -54,6 +54,32 @@ TEST(GeometryPoint, IntersectMatchesOracleForEveryKindTriple) {
   EXPECT_GE(max_xyz, 175);
 }
 
+TEST(GeometryPoint, FilteredClassifyMatchesOracleNearPlanes) {
+  // Planes through a computed point, then shifted by the smallest possible
+  // offset (d +- 1) or rotated slightly: the double estimate is useless there,
+  // so the filter must defer to the exact predicate every time it is unsure.
+  Gen g(77);
+  int decided = 0;
+  for (const char* kinds : kTriples) {
+    for (int i = 0; i < 300; ++i) {
+      const Plane pl[3] = {g.plane(kinds[0]), g.plane(kinds[1]), g.plane(kinds[2])};
+      const auto x = intersect(pl[0], pl[1], pl[2]);
+      if (!x) continue;
+      for (const Plane& base : pl) {
+        for (int delta : {-1, 1}) {
+          Plane s = base;
+          s.d = OffsetCoef::assume_bound(s.d + OffsetCoef(delta));
+          const int expected = sign_of(dot(to_mp(s), to_mp(*x)));
+          EXPECT_EQ(classify(*x, s), expected) << kinds;
+          EXPECT_EQ(classify_exact(*x, s), expected) << kinds;
+          ++decided;
+        }
+      }
+    }
+  }
+  EXPECT_GT(decided, 5000);
+}
+
 TEST(GeometryPoint, IntersectIsNulloptForDependentNormals) {
   Gen g(11);
   for (int i = 0; i < 500; ++i) {

@@ -2,6 +2,7 @@
 // Homogeneous points as intersections of three planes (Cramer's rule with
 // integer minors, paper Eq. 3) and their classification against planes (Eq. 4).
 #include <array>
+#include <cmath>
 #include <optional>
 
 #include "ember/geometry/plane.hpp"
@@ -14,11 +15,25 @@ namespace ember {
 struct Point {
   PointXYZ x, y, z;
   PointW w;
+  /// Cached x/w, y/w, z/w in double, set on creation (detail::normalize_w,
+  /// to_point): each within 8 units in the last place (<= 3 roundings in
+  /// converting the limbs, 3 in w, 1 in the division). Feeds the filter in
+  /// classify(); never used for a decision on its own.
+  std::array<double, 3> f{};
 };
+
+namespace detail {
+inline void cache_approx(Point& pt) {
+  const double w = pt.w.to_double();
+  pt.f = {pt.x.to_double() / w, pt.y.to_double() / w, pt.z.to_double() / w};
+}
+}  // namespace detail
 
 /// A grid point with w = 1.
 inline Point to_point(const IntPoint& p) {
-  return Point{PointXYZ(p.x), PointXYZ(p.y), PointXYZ(p.z), PointW(1)};
+  Point pt{PointXYZ(p.x), PointXYZ(p.y), PointXYZ(p.z), PointW(1), {}};
+  pt.f = {static_cast<double>(p.x), static_cast<double>(p.y), static_cast<double>(p.z)};
+  return pt;
 }
 
 namespace detail {
@@ -89,6 +104,8 @@ inline bool intersect_raw_axis(const Plane& p, const Plane& q, int axis, std::in
   return !det_abc.is_zero();
 }
 
+/// Makes w positive and caches the double approximation: the last step of
+/// creating every computed point.
 inline void normalize_w(Point& pt) {
   if (pt.w.negative()) {
     pt.x = -pt.x;
@@ -96,6 +113,7 @@ inline void normalize_w(Point& pt) {
     pt.z = -pt.z;
     pt.w = -pt.w;
   }
+  cache_approx(pt);
 }
 }  // namespace detail
 
@@ -117,8 +135,28 @@ static_assert(std::is_same_v<decltype((NormalCoef{} * PointXYZ{} + NormalCoef{} 
                              ClassifyValue>,
               "classify: 53+188 = 79+162 = 241 per term, pairwise sums -> 243");
 
-/// -1, 0, +1: side of `pt` relative to `s` (0: pt lies on s).
-inline int classify(const Point& pt, const Plane& s) { return classify_value(pt, s).sign(); }
+/// Exact side of `pt` relative to `s`: -1, 0, +1 (0: pt lies on s).
+inline int classify_exact(const Point& pt, const Plane& s) { return classify_value(pt, s).sign(); }
+
+/// -1, 0, +1: side of `pt` relative to `s` (0: pt lies on s). A floating-point
+/// filter answers when the double estimate v = a x~ + b y~ + c z~ + d~ is
+/// clearly away from zero, else the exact 243-bit predicate decides.
+/// Error bound (u = 2^-53): x~ has relative error < 8u (Point::f), a, b, c are
+/// exact doubles (|n| <= 2^52), d~ errs < u, each product adds u, the three
+/// sums add < 3u of m = sum of |terms|: |v - V/w| < 13u m < 2^-48 m. Exact
+/// zeros (V = 0) always fall through to the exact path.
+inline int classify(const Point& pt, const Plane& s) {
+  const double t0 = static_cast<double>(s.a.raw()) * pt.f[0];
+  const double t1 = static_cast<double>(s.b.raw()) * pt.f[1];
+  const double t2 = static_cast<double>(s.c.raw()) * pt.f[2];
+  const double t3 = static_cast<double>(s.d.raw());
+  const double v = (t0 + t1) + (t2 + t3);
+  const double m = (std::fabs(t0) + std::fabs(t1)) + (std::fabs(t2) + std::fabs(t3));
+  const double bound = m * 0x1p-48;
+  if (v > bound) return 1;
+  if (v < -bound) return -1;
+  return classify_exact(pt, s);
+}
 
 /// Fast path for an axis plane x_axis = position (as made by axis_plane):
 /// sign(x_axis - position*w): 162+26 = 188 bits per product, 189 after the
@@ -129,9 +167,6 @@ inline int classify_axis(const Point& pt, int axis, std::int64_t position) {
 }
 
 /// Approximate Cartesian coordinates, for heuristics and output only.
-inline std::array<double, 3> approx(const Point& pt) {
-  const double w = pt.w.to_double();
-  return {pt.x.to_double() / w, pt.y.to_double() / w, pt.z.to_double() / w};
-}
+inline const std::array<double, 3>& approx(const Point& pt) { return pt.f; }
 
 }  // namespace ember
