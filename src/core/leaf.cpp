@@ -55,47 +55,68 @@ void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& o
   if (disable) pieces[i].disabled = true;
 }
 
+/// Appends the edges of a convex polygon that can bound the chord where a
+/// line in the plane `cut` crosses it: edges whose end points lie on opposite
+/// sides of `cut` or touch it. The other edges contain the whole chord.
+void chord_constraints(const Polygon& poly, const std::vector<std::int8_t>& signs, std::vector<Plane>& out) {
+  const std::size_t n = poly.edges.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const int a = signs[i], b = signs[(i + 1) % n];  // edge i runs from vertex i to i+1
+    if (a == 0 || b == 0 || a != b) out.push_back(poly.edges[i]);
+  }
+}
+
 /// Case C3: split the piece by the other polygon's plane if their
 /// intersection segment crosses the piece's interior with positive length.
-void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& support, const Polygon& other) {
+/// `other_signs` are the other polygon's vertices classified against the
+/// piece's plane.
+void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& support, const Polygon& other,
+                       const std::vector<std::int8_t>& other_signs, std::vector<std::int8_t>& signs,
+                       std::vector<Plane>& cons) {
   const Polygon& poly = pieces[i].poly;
   bool neg = false, pos = false;
-  for (const Point& v : poly.vertices) {
-    const int s = classify(v, other.support);
+  signs.resize(poly.vertices.size());
+  for (std::size_t v = 0; v < poly.vertices.size(); ++v) {
+    const int s = classify(poly.vertices[v], other.support);
+    signs[v] = static_cast<std::int8_t>(s);
     neg |= s < 0;
     pos |= s > 0;
   }
   if (!(neg && pos)) return;
-  std::vector<Plane> cons;
-  cons.reserve(poly.edges.size() + other.edges.size());
-  cons.insert(cons.end(), poly.edges.begin(), poly.edges.end());
-  cons.insert(cons.end(), other.edges.begin(), other.edges.end());
+  cons.clear();
+  chord_constraints(poly, signs, cons);
+  chord_constraints(other, other_signs, cons);
   if (!line_region_has_length(support, other.support, cons)) return;
   Polygon n, p;
-  if (clip(poly, other.support, n, p) != ClipSide::Both) return;
+  if (clip(poly, signs, other.support, n, p) != ClipSide::Both) return;
   pieces[i].poly = std::move(n);
   pieces.push_back({std::move(p), pieces[i].disabled});
 }
 
-/// Can polygon o meet t's plane at all? (All vertices strictly on one side: no.)
-bool touches_plane(const Polygon& o, const Plane& plane) {
-  bool neg = false, pos = false;
-  for (const Point& v : o.vertices) {
-    const int s = classify(v, plane);
-    if (s == 0) return true;
+/// Classifies o's vertices against a plane; false if all lie strictly on
+/// one side (o cannot meet the plane).
+bool touches_plane(const Polygon& o, const Plane& plane, std::vector<std::int8_t>& signs) {
+  bool neg = false, pos = false, zero = false;
+  signs.resize(o.vertices.size());
+  for (std::size_t v = 0; v < o.vertices.size(); ++v) {
+    const int s = classify(o.vertices[v], plane);
+    signs[v] = static_cast<std::int8_t>(s);
+    zero |= s == 0;
     neg |= s < 0;
     pos |= s > 0;
   }
-  return neg && pos;
+  return zero || (neg && pos);
 }
 
 std::vector<Piece> build_bsp(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx) {
   std::vector<Piece> pieces{{t.poly, false}};
+  std::vector<std::int8_t> other_signs, signs;
+  std::vector<Plane> cons;
   for (const SoupPolygon& o : soup) {
     if (o.id == t.id || !boxes_overlap(t, o)) continue;
     // Two polygons of one solid operand never cross or overlap (NSI).
     if (o.operand == t.operand && ctx.solid[t.operand]) continue;
-    if (!touches_plane(o.poly, t.poly.support)) continue;
+    if (!touches_plane(o.poly, t.poly.support, other_signs)) continue;
     const bool same_plane = coplanar(t.poly.support, o.poly.support);
     const std::size_t n = pieces.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -103,7 +124,7 @@ std::vector<Piece> build_bsp(const Soup& soup, const SoupPolygon& t, const Solve
       if (same_plane) {
         if (coplanar_overlap(pieces[i].poly, o.poly)) cut_by_coplanar(pieces, i, o.poly, o.id < t.id);
       } else {
-        cut_by_transverse(pieces, i, t.poly.support, o.poly);
+        cut_by_transverse(pieces, i, t.poly.support, o.poly, other_signs, signs, cons);
       }
     }
   }
