@@ -3,12 +3,15 @@
 #include "ember/boolean.hpp"
 
 #include <tbb/info.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -115,16 +118,30 @@ Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer&
   struct KeyHash {
     std::size_t operator()(const Key& k) const { return (k.v[0] * 0x9e3779b97f4a7c15ULL) ^ (k.v[1] * 31) ^ k.v[2]; }
   };
+  // Round every vertex in parallel (the costly part), then weld serially in
+  // output order so vertex numbering is deterministic.
+  std::vector<std::size_t> offset(polys.size() + 1, 0);
+  for (std::size_t i = 0; i < polys.size(); ++i) offset[i + 1] = offset[i] + polys[i].poly.vertices.size();
+  std::vector<Vec3d> rounded(offset.back());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const core::OutputPolygon& p = polys[i];
+      const std::size_t n = p.poly.vertices.size();
+      for (std::size_t k = 0; k < n; ++k) {
+        const Vec3d x = q.dequantize(p.poly.vertices[p.flip ? n - 1 - k : k]);
+        rounded[offset[i] + k] = {x.x + 0.0, x.y + 0.0, x.z + 0.0};  // -0.0 -> +0.0 so equal points weld
+      }
+    }
+  });
   Mesh mesh;
   std::unordered_map<Key, std::uint32_t, KeyHash> ids;
+  ids.reserve(rounded.size() / 2);
   std::vector<std::uint32_t> face;
-  for (const core::OutputPolygon& p : polys) {
+  for (std::size_t i = 0; i < polys.size(); ++i) {
+    const core::OutputPolygon& p = polys[i];
     face.clear();
-    const std::size_t n = p.poly.vertices.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const Point& v = p.poly.vertices[p.flip ? n - 1 - i : i];
-      Vec3d x = q.dequantize(v);
-      x = {x.x + 0.0, x.y + 0.0, x.z + 0.0};  // -0.0 -> +0.0 so equal points share a vertex
+    for (std::size_t k = offset[i]; k < offset[i + 1]; ++k) {
+      const Vec3d& x = rounded[k];
       Key key{};
       std::memcpy(&key.v[0], &x.x, 8);
       std::memcpy(&key.v[1], &x.y, 8);
@@ -167,12 +184,25 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   const Quantizer q = Quantizer::fit(used);
 
   BooleanResult result;
-  core::Soup soup;
-  std::vector<Source> sources;
+  // More threads than the machine has only oversubscribe it (and make TBB
+  // warn on stderr): clamp. Results do not depend on the count.
+  const int hardware = tbb::info::default_concurrency();
+  const int threads = options.threads > 0 ? std::min(options.threads, hardware) : hardware;
+  result.stats.threads = threads;
+  tbb::task_arena arena(threads);
+
+  // Fan-triangulate every face on the grid (serial: cheap, fixes the order).
+  struct GridTriangle {
+    std::array<IntPoint, 3> p;
+    Source source;
+  };
+  std::vector<GridTriangle> triangles;
+  std::vector<std::size_t> operand_begin;
   std::array<std::int64_t, 3> lo{Quantizer::kLimit, Quantizer::kLimit, Quantizer::kLimit};
   std::array<std::int64_t, 3> hi{-Quantizer::kLimit, -Quantizer::kLimit, -Quantizer::kLimit};
   for (std::size_t o = 0; o < operands.size(); ++o) {
     const Mesh& m = operands[o];
+    operand_begin.push_back(triangles.size());
     std::vector<IntPoint> grid(m.vertices.size());
     std::vector<char> done(m.vertices.size(), 0);
     for (const std::uint32_t v : m.indices)
@@ -185,38 +215,59 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
           hi[a] = std::max(hi[a], c[a]);
         }
       }
-    std::vector<std::array<IntPoint, 3>> triangles;
     for (std::size_t f = 0; f < m.face_count(); ++f) {
       const auto face = m.face(f);
-      for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-        const std::array<IntPoint, 3> t{grid[face[0]], grid[face[i]], grid[face[i + 1]]};
-        triangles.push_back(t);
-        ++result.stats.input_triangles;
-        std::optional<Polygon> poly = make_triangle(t[0], t[1], t[2]);
-        if (!poly) {
-          ++result.stats.dropped_degenerate;
-          continue;
-        }
-        core::SoupPolygon sp{std::move(*poly), static_cast<std::uint32_t>(sources.size()),
-                             static_cast<std::uint32_t>(o), {}, {}};
-        core::update_bounds(sp);
-        soup.push_back(std::move(sp));
-        sources.push_back({static_cast<std::uint32_t>(o), static_cast<std::uint32_t>(f)});
-      }
-    }
-    if (const std::size_t open = count_open_edges(triangles); open > 0) {
-      const std::string msg = operand_name(o) + ": not closed: " + std::to_string(open) +
-                              " edges are not matched by an opposite edge, so inside/outside is undefined";
-      if (!options.allow_open) throw Error(msg + "; repair the mesh or allow open inputs (CLI: --allow-open)");
-      result.warnings.push_back(msg + "; proceeding as requested, the result may have holes");
+      for (std::size_t i = 1; i + 1 < face.size(); ++i)
+        triangles.push_back({{grid[face[0]], grid[face[i]], grid[face[i + 1]]},
+                             {static_cast<std::uint32_t>(o), static_cast<std::uint32_t>(f)}});
     }
   }
+  operand_begin.push_back(triangles.size());
+  result.stats.input_triangles = triangles.size();
 
-  // More threads than the machine has only oversubscribe it (and make TBB
-  // warn on stderr): clamp. Results do not depend on the count.
-  const int hardware = tbb::info::default_concurrency();
-  const int threads = options.threads > 0 ? std::min(options.threads, hardware) : hardware;
-  result.stats.threads = threads;
+  std::vector<std::size_t> open(operands.size(), 0);
+  std::vector<std::optional<core::SoupPolygon>> built(triangles.size());
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, operands.size(), [&](std::size_t o) {
+      std::vector<std::array<IntPoint, 3>> corners;
+      corners.reserve(operand_begin[o + 1] - operand_begin[o]);
+      for (std::size_t i = operand_begin[o]; i < operand_begin[o + 1]; ++i) corners.push_back(triangles[i].p);
+      open[o] = count_open_edges(corners);
+    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 512),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                          const auto& t = triangles[i].p;
+                          std::optional<Polygon> poly = make_triangle(t[0], t[1], t[2]);
+                          if (!poly) continue;
+                          built[i].emplace(core::SoupPolygon{std::move(*poly), 0, triangles[i].source.operand, {}, {}});
+                          core::update_bounds(*built[i]);
+                        }
+                      });
+  });
+  for (std::size_t o = 0; o < operands.size(); ++o) {
+    if (open[o] == 0) continue;
+    const std::string msg = operand_name(o) + ": not closed: " + std::to_string(open[o]) +
+                            " edges are not matched by an opposite edge, so inside/outside is undefined";
+    if (!options.allow_open) throw Error(msg + "; repair the mesh or allow open inputs (CLI: --allow-open)");
+    result.warnings.push_back(msg + "; proceeding as requested, the result may have holes");
+  }
+  // Ids in input order over the non-degenerate triangles: the total order of
+  // coplanar overlaps, independent of scheduling.
+  core::Soup soup;
+  std::vector<Source> sources;
+  soup.reserve(triangles.size());
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    if (!built[i]) {
+      ++result.stats.dropped_degenerate;
+      continue;
+    }
+    built[i]->id = static_cast<std::uint32_t>(sources.size());
+    sources.push_back(triangles[i].source);
+    soup.push_back(std::move(*built[i]));
+  }
+  built = {};
+
   std::vector<core::OutputPolygon> polys;
   if (!soup.empty()) {
     core::Subproblem root;
@@ -237,10 +288,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       };
     ctx.solid.assign(operands.size(), options.all_solid ? 1 : 0);
     for (std::size_t i = 0; i < options.solid.size(); ++i) ctx.solid[i] |= options.solid[i] ? 1 : 0;
-    tbb::task_arena arena(threads);
     arena.execute([&] { polys = core::solve(std::move(root), ctx); });
   }
-  result.mesh = export_mesh(polys, q, sources, result.provenance, result.stats.dropped_slivers);
+  arena.execute([&] { result.mesh = export_mesh(polys, q, sources, result.provenance, result.stats.dropped_slivers); });
   result.stats.output_polygons = result.mesh.face_count();
   result.stats.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
