@@ -7,3 +7,4 @@
 #include "ember/geometry/plane.hpp"
 #include "ember/geometry/point.hpp"
 #include "ember/geometry/polygon.hpp"
+#include "ember/geometry/axis_line.hpp"
