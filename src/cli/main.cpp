@@ -127,6 +127,7 @@ int run_demo(const std::string& dir, int threads) {
   write_atomically(sphere, fs::path(dir) / "sphere.obj");
   ember::BooleanOptions options;
   options.threads = threads;
+  options.all_solid = true;  // both generated solids are closed, outward and free of self-intersections
   for (const ember::Operation op :
        {ember::Operation::Union, ember::Operation::Intersection, ember::Operation::Difference}) {
     const ember::BooleanResult r = ember::boolean({torus, sphere}, op, options);
