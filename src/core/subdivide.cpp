@@ -1,9 +1,11 @@
 // Adaptive subdivision (paper Section 4.2): split the box at an integer
 // position, clip every polygon into the children and carry a reference point
 // with a known winding-number vector into each child.
+#include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
 #include <algorithm>
+#include <iterator>
 
 #include "core/solve.hpp"
 #include "core/trace.hpp"
@@ -81,12 +83,15 @@ bool move_reference(const Subproblem& parent, const Box& child, int axis, std::i
   return false;
 }
 
-void split_soup(Soup&& soup, int axis, std::int64_t position, Soup& left, Soup& right) {
+/// Clips soup[begin, end) into left/right, keeping the soup's order.
+void split_range(Soup& soup, std::size_t begin, std::size_t end, int axis, std::int64_t position, Soup& left,
+                 Soup& right) {
   const Plane plane = axis_plane(axis, position);
   Polygon neg, pos;
-  left.reserve(soup.size() / 2 + 8);
-  right.reserve(soup.size() / 2 + 8);
-  for (SoupPolygon& p : soup) {
+  left.reserve(left.size() + (end - begin) / 2 + 8);
+  right.reserve(right.size() + (end - begin) / 2 + 8);
+  for (std::size_t i = begin; i < end; ++i) {
+    SoupPolygon& p = soup[i];
     // Cheap exact-enough rejection: the box is conservative.
     if (p.hi[axis] < static_cast<double>(position)) {
       left.push_back(std::move(p));
@@ -114,6 +119,34 @@ void split_soup(Soup&& soup, int axis, std::int64_t position, Soup& left, Soup& 
         break;
       }
     }
+  }
+}
+
+/// Splits the soup at the plane. Large soups (the first levels, before the
+/// recursion has made enough tasks for all threads) are clipped in parallel
+/// chunks that are concatenated in soup order, so the result is the same for
+/// any thread count.
+void split_soup(Soup&& soup, int axis, std::int64_t position, Soup& left, Soup& right) {
+  constexpr std::size_t kChunk = 2048;
+  if (soup.size() < 2 * kChunk) {
+    split_range(soup, 0, soup.size(), axis, position, left, right);
+    return;
+  }
+  const std::size_t chunks = (soup.size() + kChunk - 1) / kChunk;
+  std::vector<Soup> lefts(chunks), rights(chunks);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    split_range(soup, c * kChunk, std::min(soup.size(), (c + 1) * kChunk), axis, position, lefts[c], rights[c]);
+  });
+  std::size_t nl = 0, nr = 0;
+  for (std::size_t c = 0; c < chunks; ++c) {
+    nl += lefts[c].size();
+    nr += rights[c].size();
+  }
+  left.reserve(nl);
+  right.reserve(nr);
+  for (std::size_t c = 0; c < chunks; ++c) {
+    std::move(lefts[c].begin(), lefts[c].end(), std::back_inserter(left));
+    std::move(rights[c].begin(), rights[c].end(), std::back_inserter(right));
   }
 }
 
