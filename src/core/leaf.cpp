@@ -7,6 +7,7 @@
 
 #include "core/solve.hpp"
 #include "core/trace.hpp"
+#include "ember/numbers/divide.hpp"
 #include "ember/error.hpp"
 
 namespace ember::core {
@@ -200,24 +201,51 @@ std::uint64_t mix(std::uint64_t x) {
 
 /// Classifies one enabled piece of t: returns false if no valid path was
 /// found (never happens for non-degenerate pieces in practice).
+/// Traces from the leaf's reference point to the piece through the dyadic
+/// target (u, v) on the piece's dominant axis k. False if (u, v) is not
+/// strictly inside the piece's projection or the path meets something
+/// degenerately.
+bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Polygon& f, const Dyadic& target, int k,
+                      bool i_first, Wnv& w, Wnv& delta, Wnv& w_front, Wnv& w_back) {
+  const Plane& S = t.poly.support;
+  AxisPoint x;
+  if (!meet(axis_line(target, k), S, x) || locate(f, x) >= 0) return false;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const std::array<int, 3> order = i_first ? std::array<int, 3>{i, j, k} : std::array<int, 3>{j, i, k};
+  w = pb.ref_w;
+  int side = 0;
+  if (!trace_path(pb.soup, pb.ref, target, order, w)) return false;
+  if (!trace_onto(pb.soup, t, target, k, x, w, delta, side)) return false;
+  w_front = w;
+  w_back = w;
+  for (std::size_t o = 0; o < w.size(); ++o) {
+    if (side > 0) {
+      w_back[o] += delta[o];
+    } else {
+      w_front[o] -= delta[o];
+    }
+  }
+  return true;
+}
+
+/// Classifies one enabled piece of t. Interior guesses come from double
+/// approximations first (fast, fine for all but slivers), then from exact
+/// centroids of vertex triples computed by long division, which also find
+/// slivers far thinner than a double can resolve at these coordinates.
 bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f, std::uint64_t seed, Wnv& w_front,
                     Wnv& w_back) {
   const Plane& S = t.poly.support;
   const int k = dominant_axis(S);
   const int i = (k + 1) % 3, j = (k + 2) % 3;
-  std::vector<std::array<double, 3>> verts;
-  verts.reserve(f.vertices.size());
-  for (const Point& v : f.vertices) verts.push_back(approx(v));
-
   Wnv w, delta;
   for (int attempt = 0; attempt < 24; ++attempt) {
     // Interior guess: the centroid first, then random convex combinations.
     double ci = 0, cj = 0, total = 0;
-    for (std::size_t v = 0; v < verts.size(); ++v) {
+    for (std::size_t v = 0; v < f.vertices.size(); ++v) {
       const double weight =
           attempt < 2 ? 1.0 : 0.05 + static_cast<double>(mix(seed * 131 + attempt * 17 + v) >> 11) * 0x1p-53;
-      ci += weight * verts[v][i];
-      cj += weight * verts[v][j];
+      ci += weight * approx(f.vertices[v])[i];
+      cj += weight * approx(f.vertices[v])[j];
       total += weight;
     }
     ci /= total;
@@ -225,26 +253,33 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
     // Snap to the coarsest dyadic grid whose point still lies strictly inside.
     for (int s = 7 + attempt / 4; s <= kMaxDyadicShift; ++s) {
       Dyadic target = with_shift(pb.ref, std::max(s, pb.ref.shift));
-      const int shift = target.shift;
-      target.num[i] = static_cast<std::int64_t>(std::nearbyint(std::ldexp(ci, shift)));
-      target.num[j] = static_cast<std::int64_t>(std::nearbyint(std::ldexp(cj, shift)));
+      target.num[i] = static_cast<__int128>(std::nearbyint(std::ldexp(ci, target.shift)));
+      target.num[j] = static_cast<__int128>(std::nearbyint(std::ldexp(cj, target.shift)));
       AxisPoint x;
       if (!meet(axis_line(target, k), S, x) || locate(f, x) >= 0) continue;
-      const std::array<int, 3> order = attempt % 2 == 0 ? std::array<int, 3>{i, j, k} : std::array<int, 3>{j, i, k};
-      w = pb.ref_w;
-      int side = 0;
-      if (!trace_path(pb.soup, pb.ref, target, order, w)) break;
-      if (!trace_onto(pb.soup, t, target, k, x, w, delta, side)) break;
-      w_front = w;
-      w_back = w;
-      for (std::size_t o = 0; o < w.size(); ++o) {
-        if (side > 0) {
-          w_back[o] += delta[o];
-        } else {
-          w_front[o] -= delta[o];
-        }
+      if (classify_through(pb, t, f, target, k, attempt % 2 == 0, w, delta, w_front, w_back)) return true;
+      break;  // inside but the path is degenerate: next guess
+    }
+  }
+  // Exact centroids of vertex triples (strictly inside a convex polygon).
+  const std::size_t n = f.vertices.size();
+  auto coord = [](const Point& p, int a) -> const PointXYZ& { return a == 0 ? p.x : (a == 1 ? p.y : p.z); };
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::size_t tri[3] = {a, (a + 1) % n, (a + 2) % n};  // never collinear: the piece is strictly convex
+    for (int s = 7; s <= kMaxDyadicShift; s += 3) {  // 7, 10, ..., 52
+      Dyadic target = with_shift(pb.ref, std::max(s, pb.ref.shift));
+      const int sh = target.shift;
+      for (const int axis : {i, j}) {
+        // sum of floor(x_m * 2^(sh+2) / w_m) ~ 12 * centroid * 2^sh; |x/w| <= 2^26,
+        // so each term is below 2^(26+54) and the sum below 2^82.
+        __int128 sum = 0;
+        for (const std::size_t m : tri)
+          sum += floor_scaled_ratio(coord(f.vertices[m], axis), f.vertices[m].w, sh + 2);
+        const __int128 q = sum >= 0 ? (sum + 6) / 12 : -((-sum + 6) / 12);
+        target.num[axis] = q;
       }
-      return true;
+      for (const bool i_first : {true, false})
+        if (classify_through(pb, t, f, target, k, i_first, w, delta, w_front, w_back)) return true;
     }
   }
   return false;

@@ -23,18 +23,18 @@ void update_bounds(SoupPolygon& p) {
 
 Dyadic with_shift(const Dyadic& p, int s) {
   Dyadic r = p;
-  for (auto& n : r.num) n <<= (s - p.shift);
+  for (auto& n : r.num) n *= static_cast<__int128>(1) << (s - p.shift);
   r.shift = s;
   return r;
 }
 
 int compare(const Dyadic& p, int axis, std::int64_t value) {
-  const __int128 a = p.num[axis], b = static_cast<__int128>(value) << p.shift;
+  const __int128 a = p.num[axis], b = static_cast<__int128>(value) * (static_cast<__int128>(1) << p.shift);
   return a < b ? -1 : (a > b ? 1 : 0);
 }
 
 Plane dyadic_axis_plane(const Dyadic& p, int axis) {
-  const std::int64_t scale = std::int64_t{1} << p.shift;
+  const std::int64_t scale = std::int64_t{1} << p.shift;  // <= 2^52: a NormalCoef
   Plane pl{0, 0, 0, -p.num[axis]};
   (axis == 0 ? pl.a : axis == 1 ? pl.b : pl.c) = scale;
   return pl;

@@ -32,14 +32,17 @@ struct Box {
 
 /// A point with dyadic rational coordinates num[i] / 2^shift. Reference points
 /// and trace paths use them: each coordinate is an axis plane (2^shift, -num)
-/// whose coefficients stay inside the plane budget (2^shift <= 2^36 < 2^53,
-/// |num| <= 2^(25+36) < 2^79), so every trace predicate is an ordinary
-/// three-plane point classified against a plane.
+/// whose coefficients stay inside the plane budget (2^shift <= 2^52 < 2^53,
+/// |num| <= 2^(25+52) < 2^79), so every trace predicate is an ordinary
+/// three-plane point classified against a plane. Fine shifts are only needed
+/// to place a point inside a sliver; most points have shift <= 14.
 struct Dyadic {
-  std::array<std::int64_t, 3> num{};
+  std::array<__int128, 3> num{};
   int shift = 0;
 };
-inline constexpr int kMaxDyadicShift = 36;
+inline constexpr int kMaxDyadicShift = 52;
+static_assert(kMaxDyadicShift + 25 < OffsetCoef::bits && kMaxDyadicShift < NormalCoef::bits,
+              "dyadic axis planes (2^shift, -num) must fit the plane budget: shift <= 52, |num| <= 2^77");
 
 /// The same point with a finer common denominator 2^s (s >= p.shift).
 Dyadic with_shift(const Dyadic& p, int s);

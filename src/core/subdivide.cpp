@@ -47,7 +47,7 @@ bool move_reference(const Subproblem& parent, const Box& child, int axis, std::i
     const int shift = std::max(kShift, parent.ref.shift);
     Dyadic cand = with_shift(parent.ref, shift);
     const std::int64_t offset = odd << (shift - kShift);
-    cand.num[axis] = (split << shift) + (upper ? offset : -offset);
+    cand.num[axis] = static_cast<__int128>(split) * (std::int64_t{1} << shift) + (upper ? offset : -offset);
     Wnv trial = parent.ref_w;
     if (trace_axis_segment(parent.soup, with_shift(parent.ref, shift), cand, axis, trial)) {
       ref = cand;
@@ -65,7 +65,8 @@ bool move_reference(const Subproblem& parent, const Box& child, int axis, std::i
       Dyadic cand = with_shift(parent.ref, shift);
       const std::int64_t unit = std::int64_t{1} << (shift - s);
       // 1/2 ± 2^-s of a grid unit past the split plane: strictly inside the child.
-      cand.num[axis] = (split << shift) + (upper ? 1 : -1) * ((std::int64_t{1} << (shift - 1)) + unit * (variant % 3 - 1));
+      cand.num[axis] = static_cast<__int128>(split) * (std::int64_t{1} << shift) +
+                       (upper ? 1 : -1) * ((std::int64_t{1} << (shift - 1)) + unit * (variant % 3 - 1));
       cand.num[b] += ((variant & 1) ? unit : -unit) * (1 + variant / 2);
       cand.num[c] += ((variant & 2) ? unit : -unit) * (1 + variant / 4);
       bool inside = true;

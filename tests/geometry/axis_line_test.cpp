@@ -9,7 +9,7 @@
 namespace ember::test {
 namespace {
 
-Plane dyadic_plane(int axis, std::int64_t num, int shift) {
+Plane dyadic_plane(int axis, __int128 num, int shift) {
   Plane p{0, 0, 0, -num};
   (axis == 0 ? p.a : axis == 1 ? p.b : p.c) = std::int64_t{1} << shift;
   return p;
@@ -21,7 +21,7 @@ struct Case {
 };
 
 /// A segment along `axis` through (U, V)/2^s from coordinate lo to hi.
-Case make_case(int axis, std::int64_t U, std::int64_t V, int s, std::int64_t lo, std::int64_t hi) {
+Case make_case(int axis, __int128 U, __int128 V, int s, __int128 lo, __int128 hi) {
   Case c;
   c.line = {axis, DyadicNum(U), DyadicNum(V), s};
   c.l0 = dyadic_plane((axis + 1) % 3, U, s);
@@ -52,9 +52,9 @@ TEST(AxisLine, MatchesGeneralSegmentTestOnRandomTriangles) {
     if (!tri) continue;
     const int axis = static_cast<int>(rng() % 3);
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    auto get = [](const IntPoint& q, int a) { return a == 0 ? q.x : (a == 1 ? q.y : q.z); };
-    const int s = static_cast<int>(rng() % 37);
-    std::int64_t U, V;
+    auto get = [](const IntPoint& q, int a) { return static_cast<__int128>(a == 0 ? q.x : (a == 1 ? q.y : q.z)); };
+    const int s = static_cast<int>(rng() % 53);
+    __int128 U, V;
     if (it % 3 == 0) {  // through a vertex: exact boundary hits
       U = get(p[it % 3], u) << s;
       V = get(p[it % 3], v) << s;
@@ -63,7 +63,7 @@ TEST(AxisLine, MatchesGeneralSegmentTestOnRandomTriangles) {
       V = ((get(p[0], v) + get(p[1], v) + get(p[2], v)) << s) / 3;
     }
     // Segment ends: sometimes exactly at a vertex's height (endpoint hits).
-    std::int64_t lo = (-L) << s, hi = L << s;
+    __int128 lo = static_cast<__int128>(-L) << s, hi = static_cast<__int128>(L) << s;
     if (it % 5 == 0) hi = get(p[it % 3], axis) << s;
     const Case c = make_case(axis, U, V, s, lo, hi);
     expect_same(c, *tri);

@@ -15,13 +15,13 @@
 
 namespace ember {
 
-using DyadicNum = Int<62>;   ///< |U| <= 2^25 * 2^36 = 2^61 < 2^62
-using DyadicScale = Int<38>; ///< 2^s with s <= 36
-/// n_u U + n_v V + d 2^s: (53+62 = 115) + (115) -> 116, + (79+38 = 117) -> 118.
-using AxisPointCoord = Int<118>;
-using AxisPointW = Int<91>;  ///< n_axis 2^s: 53+38 = 91
-/// classify: 53+118 = 171 and 79+91 = 170 per term, pairwise sums -> 173 (vs 243 in general).
-using AxisClassifyValue = Int<173>;
+using DyadicNum = Int<78>;    ///< |U| <= 2^25 * 2^52 = 2^77 < 2^78
+using DyadicScale = Int<54>;  ///< 2^s with s <= 52 < 2^54
+/// n_u U + n_v V + d 2^s: (53+78 = 131) + (131) -> 132, + (79+54 = 133) -> 134.
+using AxisPointCoord = Int<134>;
+using AxisPointW = Int<107>;  ///< n_axis 2^s: 53+54 = 107
+/// classify: 53+134 = 187 and 79+107 = 186 per term, pairwise sums -> 189 (vs 243 in general).
+using AxisClassifyValue = Int<189>;
 
 /// A point on an axis-parallel line, homogeneous with w > 0.
 struct AxisPoint {
@@ -34,7 +34,7 @@ struct AxisPoint {
 struct AxisLine {
   int axis = 0;   ///< direction of the line
   DyadicNum u, v; ///< numerators on axes (axis+1)%3 and (axis+2)%3
-  int shift = 0;  ///< common denominator 2^shift, shift <= 36
+  int shift = 0;  ///< common denominator 2^shift, shift <= 52
 };
 
 namespace detail {
@@ -51,7 +51,7 @@ inline auto axis_line_offset(const AxisLine& l, const Plane& p) {
 inline bool meet(const AxisLine& l, const Plane& p, AxisPoint& out, bool* in_plane = nullptr) {
   const NormalCoef& na = p.normal(l.axis);
   const auto off = detail::axis_line_offset(l, p);
-  static_assert(std::is_same_v<std::remove_cv_t<decltype(off)>, AxisPointCoord>, "offset: 115 + 115 -> 116, + 117 -> 118 bits");
+  static_assert(std::is_same_v<std::remove_cv_t<decltype(off)>, AxisPointCoord>, "offset: 131 + 131 -> 132, + 133 -> 134 bits");
   if (na.is_zero()) {
     if (in_plane) *in_plane = off.is_zero();
     return false;
