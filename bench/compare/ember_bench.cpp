@@ -9,7 +9,7 @@
 //       tools, Manifold included, get bit-identical input) and writes the
 //       benchmark's binary format (meshbin.hpp). Prints {"triangles":..,"vertices":..}.
 //
-//   ember_bench run A.bin B.bin [--ops ..] [--runs R] [--budget-ms B] [--threads T]
+//   ember_bench run A.bin B.bin [--ops ..] [--runs R] [--budget-ms B] [--threads T] [--solid]
 //       Times ember::boolean in-process: building the two ember::Mesh from the
 //       flat arrays + the Boolean (its output is already flat arrays). One JSON
 //       line per operation (runner_common.hpp).
@@ -126,6 +126,7 @@ int run(int argc, char** argv) {
                                                 : throw std::runtime_error("unknown op " + op);
     ember::BooleanOptions opt;
     opt.threads = args.threads;
+    opt.all_solid = args.solid;
     ember::BooleanResult last;
     bench::time_op(
         "ember", args, op, in_tris,

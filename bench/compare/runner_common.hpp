@@ -27,6 +27,7 @@ struct RunnerArgs {
   int runs = 5;
   double budget_ms = 1e300;  // stop repeating once this much time was spent (at least one run)
   int threads = 1;
+  bool solid = false;  // ember only: BooleanOptions::all_solid (--assume-solid)
 };
 
 inline RunnerArgs parse_runner_args(int argc, char** argv, int first) {
@@ -49,6 +50,8 @@ inline RunnerArgs parse_runner_args(int argc, char** argv, int first) {
       r.budget_ms = std::stod(next());
     } else if (s == "--threads") {
       r.threads = std::stoi(next());
+    } else if (s == "--solid") {
+      r.solid = true;
     } else {
       pos.push_back(s);
     }
