@@ -5,6 +5,7 @@
 #include <tbb/task_group.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 
 #include "core/solve.hpp"
@@ -17,7 +18,69 @@ namespace {
 
 /// The axis to split and the position, or -1 when the box cannot be split
 /// (a split position must lie strictly inside, so the extent must be >= 2).
-int choose_split(const Box& box, std::int64_t& position) {
+///
+/// Section 4.5.3: the soup's operands are summarized by their bounding boxes
+/// and centroids (of up to kSample polygon box centres). A face of operand
+/// j's box that separates operand i's centroid from all of j is a candidate:
+/// one side of it holds no polygon of j, so the early terminations get a
+/// chance there. The candidate farthest from the centroid wins; without one,
+/// the longest axis is halved (the paper's baseline).
+int choose_split(const Subproblem& pb, std::int64_t& position) {
+  const Box& box = pb.box;
+  struct Summary {
+    std::array<double, 3> lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, sum{};
+    std::size_t count = 0, sampled = 0;
+  };
+  std::vector<Summary> ops;
+  std::vector<std::uint32_t> present;
+  for (const SoupPolygon& p : pb.soup) {
+    if (p.operand >= ops.size()) ops.resize(p.operand + 1);
+    Summary& s = ops[p.operand];
+    if (s.count++ == 0) present.push_back(p.operand);
+    for (int a = 0; a < 3; ++a) {
+      s.lo[a] = std::min(s.lo[a], p.lo[a]);
+      s.hi[a] = std::max(s.hi[a], p.hi[a]);
+    }
+  }
+  if (present.size() > 1) {
+    // Centroids from a deterministic subset (every k-th polygon).
+    constexpr std::size_t kSample = 64;
+    const std::size_t step = std::max<std::size_t>(1, pb.soup.size() / kSample);
+    for (std::size_t n = 0; n < pb.soup.size(); n += step) {
+      const SoupPolygon& p = pb.soup[n];
+      Summary& s = ops[p.operand];
+      for (int a = 0; a < 3; ++a) s.sum[a] += 0.5 * (p.lo[a] + p.hi[a]);
+      ++s.sampled;
+    }
+    int best_axis = -1;
+    double best_distance = 0;
+    for (const std::uint32_t i : present) {
+      if (ops[i].sampled == 0) continue;
+      for (const std::uint32_t j : present) {
+        if (i == j) continue;
+        for (int a = 0; a < 3; ++a) {
+          const double c = ops[i].sum[a] / static_cast<double>(ops[i].sampled);
+          // The integer plane just outside j's box on the side of c.
+          std::int64_t pos;
+          if (c < ops[j].lo[a]) {
+            pos = static_cast<std::int64_t>(std::floor(ops[j].lo[a]));
+          } else if (c > ops[j].hi[a]) {
+            pos = static_cast<std::int64_t>(std::ceil(ops[j].hi[a]));
+          } else {
+            continue;
+          }
+          if (pos <= box.lo[a] || pos >= box.hi[a]) continue;
+          const double distance = std::fabs(c - static_cast<double>(pos));
+          if (distance > best_distance) {
+            best_distance = distance;
+            best_axis = a;
+            position = pos;
+          }
+        }
+      }
+    }
+    if (best_axis >= 0) return best_axis;
+  }
   int axis = -1;
   std::int64_t best = 1;
   for (int a = 0; a < 3; ++a) {
@@ -203,7 +266,7 @@ std::vector<OutputPolygon> solve(Subproblem&& pb, const SolveContext& ctx) {
   if (pb.soup.empty() || indicator_constant(pb, ctx)) return out;
   if (emit_single_solid(pb, ctx, out)) return out;
   std::int64_t position = 0;
-  const int axis = pb.soup.size() > ctx.leaf_size ? choose_split(pb.box, position) : -1;
+  const int axis = pb.soup.size() > ctx.leaf_size ? choose_split(pb, position) : -1;
   if (axis < 0) {
     solve_leaf(pb, ctx, out);
     return out;
