@@ -61,28 +61,38 @@ struct PointHash {
 /// other (on the quantized positions, degenerate triangles included, so the
 /// test describes the surface the core actually sees). Zero means closed.
 std::size_t count_open_edges(const std::vector<std::array<IntPoint, 3>>& triangles) {
-  // Weld equal positions to ids, then balance directed edges by sorting.
+  // Weld equal positions to ids, then balance directed edges bucketed by
+  // their lower id (a counting sort: linear, and buckets are tiny).
   std::unordered_map<IntPoint, std::uint32_t, PointHash> ids;
   ids.reserve(triangles.size());
-  std::vector<std::pair<std::uint64_t, int>> edges;
-  edges.reserve(3 * triangles.size());
-  for (const auto& t : triangles) {
-    std::uint32_t v[3];
-    for (int e = 0; e < 3; ++e) v[e] = ids.try_emplace(t[e], static_cast<std::uint32_t>(ids.size())).first->second;
+  std::vector<std::array<std::uint32_t, 3>> tri_ids(triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int e = 0; e < 3; ++e)
+      tri_ids[t][e] = ids.try_emplace(triangles[t][e], static_cast<std::uint32_t>(ids.size())).first->second;
+  std::vector<std::uint32_t> start(ids.size() + 1, 0);
+  for (const auto& v : tri_ids)
+    for (int e = 0; e < 3; ++e)
+      if (v[e] != v[(e + 1) % 3]) ++start[std::min(v[e], v[(e + 1) % 3]) + 1];
+  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  std::vector<std::pair<std::uint32_t, int>> edges(start.back());  // (higher id, +1 if lower -> higher)
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (const auto& v : tri_ids)
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t a = v[e], b = v[(e + 1) % 3];
       if (a == b) continue;
-      edges.push_back(a < b ? std::pair{(std::uint64_t{a} << 32) | b, 1} : std::pair{(std::uint64_t{b} << 32) | a, -1});
+      edges[fill[std::min(a, b)]++] = {std::max(a, b), a < b ? 1 : -1};
     }
-  }
-  std::sort(edges.begin(), edges.end());
   std::size_t open = 0;
-  for (std::size_t i = 0; i < edges.size();) {
-    int balance = 0;
-    std::size_t j = i;
-    for (; j < edges.size() && edges[j].first == edges[i].first; ++j) balance += edges[j].second;
-    open += balance != 0;
-    i = j;
+  for (std::size_t i = 0; i + 1 < start.size(); ++i) {
+    auto first = edges.begin() + start[i], last = edges.begin() + start[i + 1];
+    std::sort(first, last);
+    for (auto it = first; it != last;) {
+      int balance = 0;
+      auto jt = it;
+      for (; jt != last && jt->first == it->first; ++jt) balance += jt->second;
+      open += balance != 0;
+      it = jt;
+    }
   }
   return open;
 }

@@ -253,8 +253,9 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
     // Snap to the coarsest dyadic grid whose point still lies strictly inside.
     for (int s = 7 + attempt / 4; s <= kMaxDyadicShift; ++s) {
       Dyadic target = with_shift(pb.ref, std::max(s, pb.ref.shift));
-      target.num[i] = static_cast<__int128>(std::nearbyint(std::ldexp(ci, target.shift)));
-      target.num[j] = static_cast<__int128>(std::nearbyint(std::ldexp(cj, target.shift)));
+      const double scale = static_cast<double>(std::int64_t{1} << target.shift);  // exact power of two
+      target.num[i] = static_cast<__int128>(std::nearbyint(ci * scale));
+      target.num[j] = static_cast<__int128>(std::nearbyint(cj * scale));
       AxisPoint x;
       if (!meet(axis_line(target, k), S, x) || locate(f, x) >= 0) continue;
       if (classify_through(pb, t, f, target, k, attempt % 2 == 0, w, delta, w_front, w_back)) return true;

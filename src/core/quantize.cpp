@@ -48,6 +48,8 @@ Quantizer Quantizer::fit_box(const Vec3d& lo, const Vec3d& hi) {
   // and centre * 2^k must fit the int64 arithmetic below.
   k = std::clamp(k, -1000, 1000);
   q.k_ = k;
+  q.scale_ = std::ldexp(1.0, k);
+  q.inv_scale_ = std::ldexp(1.0, -k);
   for (int i = 0; i < 3; ++i) {
     const double mid = coord(lo, i) / 2 + coord(hi, i) / 2;
     const double c = std::nearbyint(std::ldexp(mid, k));
@@ -62,7 +64,7 @@ IntPoint Quantizer::quantize(const Vec3d& p) const {
   for (int i = 0; i < 3; ++i) {
     const double v = coord(p, i);
     if (!std::isfinite(v)) throw Error("non-finite vertex coordinate (NaN or infinity)");
-    const double g = std::nearbyint(std::ldexp(v, k_));
+    const double g = std::nearbyint(v * scale_);
     // |g - c| <= kLimit for points inside the fitted box; anything else is a caller error.
     const double rel = g - static_cast<double>(c_[i]);
     if (!(std::fabs(rel) <= static_cast<double>(kLimit)))
@@ -77,7 +79,7 @@ Vec3d Quantizer::dequantize(const Point& p) const {
   // int64 whose conversion to double is correctly rounded; 2^-k is exact.
   if (p.w == PointW(1)) {
     const auto grid = [&](const PointXYZ& v, int i) {
-      return std::ldexp(static_cast<double>(static_cast<std::int64_t>(v.limb(0)) + c_[i]), -k_);
+      return static_cast<double>(static_cast<std::int64_t>(v.limb(0)) + c_[i]) * inv_scale_;
     };
     return Vec3d{grid(p.x, 0), grid(p.y, 1), grid(p.z, 2)};
   }
@@ -86,7 +88,7 @@ Vec3d Quantizer::dequantize(const Point& p) const {
   const auto x = ratio_to_double(p.x + cx * p.w, p.w);
   const auto y = ratio_to_double(p.y + cy * p.w, p.w);
   const auto z = ratio_to_double(p.z + cz * p.w, p.w);
-  return Vec3d{std::ldexp(x, -k_), std::ldexp(y, -k_), std::ldexp(z, -k_)};
+  return Vec3d{x * inv_scale_, y * inv_scale_, z * inv_scale_};
 }
 
 Vec3d Quantizer::dequantize(const IntPoint& p) const {

@@ -50,6 +50,8 @@ AxisLine axis_line(const Dyadic& p, int axis) {
   return AxisLine{axis, DyadicNum(p.num[(axis + 1) % 3]), DyadicNum(p.num[(axis + 2) % 3]), p.shift};
 }
 
-double approx_coord(const Dyadic& p, int axis) { return std::ldexp(static_cast<double>(p.num[axis]), -p.shift); }
+double approx_coord(const Dyadic& p, int axis) {
+  return static_cast<double>(p.num[axis]) / static_cast<double>(std::int64_t{1} << p.shift);  // exact power of two
+}
 
 }  // namespace ember::core

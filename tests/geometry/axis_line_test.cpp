@@ -78,6 +78,35 @@ TEST(AxisLine, MatchesGeneralSegmentTestOnRandomTriangles) {
   EXPECT_GT(endpoint, 10);
 }
 
+TEST(AxisLine, FilteredClassifyMatchesExactNearPlanes) {
+  // The meeting point lies exactly on the support: the support shifted by d+-1
+  // is as close as a plane can get, where only the exact path can decide.
+  std::mt19937_64 rng(8);
+  const std::int64_t L = kCoordLimit;
+  std::uniform_int_distribution<std::int64_t> coord(-L, L);
+  int checked = 0;
+  for (int it = 0; it < 3000; ++it) {
+    const std::optional<Plane> s = supporting_plane({coord(rng), coord(rng), coord(rng)},
+                                                    {coord(rng), coord(rng), coord(rng)},
+                                                    {coord(rng), coord(rng), coord(rng)});
+    if (!s) continue;
+    const int shift = static_cast<int>(rng() % 53);
+    const AxisLine line{static_cast<int>(rng() % 3), DyadicNum(static_cast<__int128>(coord(rng)) << shift),
+                        DyadicNum(static_cast<__int128>(coord(rng)) << shift), shift};
+    AxisPoint x;
+    if (!meet(line, *s, x)) continue;
+    EXPECT_EQ(classify(x, *s), 0);
+    for (int delta : {-1, 1}) {
+      Plane t = *s;
+      t.d = OffsetCoef::assume_bound(t.d + OffsetCoef(delta));
+      EXPECT_EQ(classify(x, t), delta);  // exactly +-1 at x
+      EXPECT_EQ(classify_exact(x, t), delta);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 4000);
+}
+
 TEST(AxisLine, ParallelAndInPlaneLines) {
   const Polygon tri = *make_triangle({0, 0, 0}, {12, 0, 0}, {0, 12, 0});  // z = 0
   // Along x at z = 0 (in the plane) and at z = 1/2 (parallel, off it).

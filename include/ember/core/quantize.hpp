@@ -43,6 +43,7 @@ class Quantizer {
 
  private:
   int k_ = 0;
+  double scale_ = 1, inv_scale_ = 1;  ///< 2^k and 2^-k: multiplying by them is exact (|k| <= 1000)
   std::int64_t c_[3] = {0, 0, 0};
 };
 
