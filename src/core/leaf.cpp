@@ -109,10 +109,22 @@ bool touches_plane(const Polygon& o, const Plane& plane, std::vector<std::int8_t
   return zero || (neg && pos);
 }
 
-std::vector<Piece> build_bsp(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx) {
-  std::vector<Piece> pieces{{t.poly, false}};
+/// Buffers reused across the polygons of a leaf (allocation-free inner loops).
+struct LeafScratch {
   std::vector<std::int8_t> other_signs, signs;
   std::vector<Plane> cons;
+  Wnv w, delta;
+};
+
+/// Fills `pieces` with the enabled and disabled pieces of t.
+void build_bsp(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, LeafScratch& scratch,
+               std::vector<Piece>& pieces) {
+  pieces.resize(1);
+  pieces[0].poly = t.poly;  // reuses the capacity of the previous polygon's first piece
+  pieces[0].disabled = false;
+  std::vector<std::int8_t>& other_signs = scratch.other_signs;
+  std::vector<std::int8_t>& signs = scratch.signs;
+  std::vector<Plane>& cons = scratch.cons;
   for (const SoupPolygon& o : soup) {
     if (o.id == t.id || !boxes_overlap(t, o)) continue;
     // Two polygons of one solid operand never cross or overlap (NSI).
@@ -129,7 +141,6 @@ std::vector<Piece> build_bsp(const Soup& soup, const SoupPolygon& t, const Solve
       }
     }
   }
-  return pieces;
 }
 
 /// Traces the last segment of a classification path: from `start` along axis
@@ -233,11 +244,12 @@ bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Polygon&
 /// centroids of vertex triples computed by long division, which also find
 /// slivers far thinner than a double can resolve at these coordinates.
 bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f, std::uint64_t seed, Wnv& w_front,
-                    Wnv& w_back) {
+                    Wnv& w_back, LeafScratch& scratch) {
   const Plane& S = t.poly.support;
   const int k = dominant_axis(S);
   const int i = (k + 1) % 3, j = (k + 2) % 3;
-  Wnv w, delta;
+  Wnv& w = scratch.w;
+  Wnv& delta = scratch.delta;
   for (int attempt = 0; attempt < 24; ++attempt) {
     // Interior guess: the centroid first, then random convex combinations.
     double ci = 0, cj = 0, total = 0;
@@ -290,11 +302,14 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
 
 void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<OutputPolygon>& out) {
   Wnv w_front, w_back;
+  LeafScratch scratch;
+  std::vector<Piece> pieces;
   for (const SoupPolygon& t : pb.soup) {
-    const std::vector<Piece> pieces = build_bsp(pb.soup, t, ctx);
+    build_bsp(pb.soup, t, ctx, scratch, pieces);
     for (std::size_t n = 0; n < pieces.size(); ++n) {
       if (pieces[n].disabled) continue;
-      if (!classify_piece(pb, t, pieces[n].poly, (static_cast<std::uint64_t>(t.id) << 20) ^ n, w_front, w_back))
+      if (!classify_piece(pb, t, pieces[n].poly, (static_cast<std::uint64_t>(t.id) << 20) ^ n, w_front, w_back,
+                          scratch))
         throw Error("ember: could not classify a polygon piece (no non-degenerate trace path found); "
                     "this input is too degenerate for the current implementation");
       const bool in_front = ctx.inside(w_front), in_back = ctx.inside(w_back);

@@ -174,11 +174,14 @@ void split_range(Soup& soup, std::size_t begin, std::size_t end, int axis, std::
         right.push_back(std::move(p));
         break;
       case ClipSide::Both: {
-        SoupPolygon l{neg, p.id, p.operand, {}, {}};
-        SoupPolygon r{pos, p.id, p.operand, {}, {}};
-        update_bounds(l);
+        // The parts take over the clip buffers; the old polygon's buffers
+        // become the next clip's, so a split costs one allocation, not four.
+        SoupPolygon r{std::move(pos), p.id, p.operand, {}, {}};
+        pos = Polygon{};
+        std::swap(p.poly, neg);
+        update_bounds(p);
         update_bounds(r);
-        left.push_back(std::move(l));
+        left.push_back(std::move(p));
         right.push_back(std::move(r));
         break;
       }
