@@ -495,9 +495,11 @@ def write_plot(path: Path, rows: list[dict], tools: list[str]) -> None:
         return
     fig, ax = plt.subplots(figsize=(8, 5.5))
     markers = {"pairs": "o", "paper": "s", "scaling": "^"}
-    colors = ["tab:blue", "tab:cyan", "tab:purple", "tab:orange", "tab:green", "tab:red"]
+    # ember runs in blues/purples, peers in warm colours; one colour per tool.
+    ember_colors = ["tab:blue", "tab:cyan", "tab:purple", "tab:pink", "tab:gray", "tab:olive"]
+    peer_colors = {"cgal": "tab:orange", "manifold": "tab:green"}
     for i, t in enumerate(tools):
-        color = colors[i % len(colors)] if not t.startswith("ember") else colors[i % 3]
+        color = ember_colors[i % len(ember_colors)] if t.startswith("ember") else peer_colors.get(t, "tab:red")
         if t == "cgal":
             color = "tab:orange"
         if t == "manifold":
