@@ -3,6 +3,8 @@
 // STL from the shared data when it is present. Reported as bytes/s.
 #include <benchmark/benchmark.h>
 
+#include "ember/shapes.hpp"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -14,29 +16,8 @@
 namespace {
 
 /// UV sphere with 2*segments*(rings-1) triangles.
-ember::Mesh sphere(int rings, int segments) {
-  ember::Mesh m;
-  const double pi = std::acos(-1.0);
-  m.add_vertex({0, 0, 1});
-  for (int r = 1; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const double th = pi * r / rings, ph = 2 * pi * s / segments;
-      m.add_vertex({std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)});
-    }
-  const auto south = m.add_vertex({0, 0, -1});
-  const auto at = [&](int r, int s) { return std::uint32_t(1 + (r - 1) * segments + (s % segments)); };
-  for (int s = 0; s < segments; ++s) m.add_face({0, at(1, s), at(1, s + 1)});
-  for (int r = 1; r + 1 < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      m.add_face({at(r, s), at(r + 1, s), at(r + 1, s + 1)});
-      m.add_face({at(r, s), at(r + 1, s + 1), at(r, s + 1)});
-    }
-  for (int s = 0; s < segments; ++s) m.add_face({south, at(rings - 1, s + 1), at(rings - 1, s)});
-  return m;
-}
-
 const ember::Mesh& big_sphere() {
-  static const ember::Mesh m = sphere(708, 708);  // ~1.0M triangles
+  static const ember::Mesh m = ember::shapes::uv_sphere({0, 0, 0}, 1.0, 708, 708);  // ~1.0M triangles
   return m;
 }
 

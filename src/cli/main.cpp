@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "cli/demo_shapes.hpp"
 #include "ember/boolean.hpp"
 #include "ember/error.hpp"
 #include "ember/io/mesh_io.hpp"
+#include "ember/shapes.hpp"
 
 namespace fs = std::filesystem;
 
@@ -119,8 +119,8 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
 
 int run_demo(const std::string& dir, int threads) {
   fs::create_directories(dir);
-  const ember::Mesh torus = ember::cli::demo_torus(1.0, 0.35, 96, 48);
-  const ember::Mesh sphere = ember::cli::demo_sphere({0.9, 0.0, 0.2}, 0.6, 64, 32);
+  const ember::Mesh torus = ember::shapes::torus(1.0, 0.35, 96, 48);
+  const ember::Mesh sphere = ember::shapes::uv_sphere({0.9, 0.0, 0.2}, 0.6, 64, 32);
   std::printf("ember demo: torus (%zu triangles) and sphere (%zu triangles)\n", torus.triangle_count(),
               sphere.triangle_count());
   write_atomically(torus, fs::path(dir) / "torus.obj");

@@ -19,11 +19,7 @@ struct Piece {
   bool disabled = false;  ///< overlapped by a coplanar polygon with a lower id (Fig. 8)
 };
 
-bool boxes_overlap(const SoupPolygon& a, const SoupPolygon& b) {
-  for (int i = 0; i < 3; ++i)
-    if (a.hi[i] < b.lo[i] || b.hi[i] < a.lo[i]) return false;
-  return true;
-}
+bool boxes_overlap(const SoupPolygon& a, const SoupPolygon& b) { return !box_disjoint(a, b.lo, b.hi); }
 
 /// True if no vertex of `poly` is strictly on the negative side of `plane`.
 bool all_nonnegative(const Polygon& poly, const Plane& plane) {
@@ -163,41 +159,24 @@ bool trace_onto(const Soup& soup, const SoupPolygon& t, const Dyadic& start, int
   const Plane r1 = side > 0 ? -S : S;
 
   const auto xa = approx(x);
-  std::array<double, 3> lo{}, hi{};
+  AxisSegment seg{line, l0, l1, r0, r1, dir, {}, {}};
   for (int a = 0; a < 3; ++a) {
-    lo[a] = std::min(approx_coord(start, a), xa[a]) - 1e-6;
-    hi[a] = std::max(approx_coord(start, a), xa[a]) + 1e-6;
+    seg.lo[a] = std::min(approx_coord(start, a), xa[a]) - 1e-6;
+    seg.hi[a] = std::max(approx_coord(start, a), xa[a]) + 1e-6;
   }
   delta.assign(w.size(), 0);
   delta[t.operand] += 1;
   for (const SoupPolygon& p : soup) {
     if (p.id == t.id) continue;
-    if (p.hi[0] < lo[0] || p.lo[0] > hi[0] || p.hi[1] < lo[1] || p.lo[1] > hi[1] || p.hi[2] < lo[2] ||
-        p.lo[2] > hi[2])
-      continue;
     if (coplanar(p.poly.support, S)) {
+      // Meets the segment only at x (the segment is transverse to S).
+      if (box_disjoint(p, seg.lo, seg.hi)) continue;
       const int loc = locate(p.poly, x);
       if (loc == 0) return false;
       if (loc < 0) delta[p.operand] += same_orientation(p.poly.support, S) ? 1 : -1;
       continue;
     }
-    const SegmentHit h = intersect_segment(line, r0, r1, p.poly);
-    switch (h.kind) {
-      case LineHit::Miss:
-        break;
-      case LineHit::Boundary:
-        return false;
-      case LineHit::Interior:
-        if (h.at_endpoint) return false;
-        w[p.operand] -= dir * p.poly.support.normal(k).sign();
-        break;
-      case LineHit::InPlane: {
-        std::vector<Plane> cons{r0, r1};
-        cons.insert(cons.end(), p.poly.edges.begin(), p.poly.edges.end());
-        if (line_region_nonempty(l0, l1, cons)) return false;
-        break;
-      }
-    }
+    if (!add_crossing(seg, p, w)) return false;
   }
   return true;
 }

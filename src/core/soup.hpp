@@ -25,6 +25,12 @@ using Soup = std::vector<SoupPolygon>;
 /// margin 2^-16 covers it with room to spare.
 void update_bounds(SoupPolygon& p);
 
+/// The polygon's conservative box misses the box [lo, hi].
+inline bool box_disjoint(const SoupPolygon& p, const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
+  return p.hi[0] < lo[0] || p.lo[0] > hi[0] || p.hi[1] < lo[1] || p.lo[1] > hi[1] || p.hi[2] < lo[2] ||
+         p.lo[2] > hi[2];
+}
+
 /// Closed integer box [lo, hi] per axis.
 struct Box {
   std::array<std::int64_t, 3> lo{}, hi{};

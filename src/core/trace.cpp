@@ -56,38 +56,37 @@ bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int 
   const Plane r0 = dir > 0 ? -pa : pa;
   const Plane r1 = dir > 0 ? pb : -pb;
 
-  std::array<double, 3> lo{}, hi{};
+  AxisSegment seg{line, l0, l1, r0, r1, dir, {}, {}};
   for (int i = 0; i < 3; ++i) {
-    lo[i] = std::min(approx_coord(a, i), approx_coord(b, i));
-    hi[i] = std::max(approx_coord(a, i), approx_coord(b, i));
+    seg.lo[i] = std::min(approx_coord(a, i), approx_coord(b, i));
+    seg.hi[i] = std::max(approx_coord(a, i), approx_coord(b, i));
   }
-  for (const SoupPolygon& p : soup) {
-    if (p.hi[0] < lo[0] || p.lo[0] > hi[0] || p.hi[1] < lo[1] || p.lo[1] > hi[1] || p.hi[2] < lo[2] ||
-        p.lo[2] > hi[2])
-      continue;
-    const SegmentHit h = intersect_segment(line, r0, r1, p.poly);
-    switch (h.kind) {
-      case LineHit::Miss:
-        break;
-      case LineHit::Boundary:
-        return false;
-      case LineHit::Interior: {
-        if (h.at_endpoint) return false;
-        // Crossing along +axis through a polygon whose normal points along
-        // +axis goes from its back to its front: w drops by its transition.
-        const int n = p.poly.support.normal(axis).sign();
-        w[p.operand] -= dir * n;
-        break;
-      }
-      case LineHit::InPlane: {
-        std::vector<Plane> cons;
-        cons.reserve(p.poly.edges.size() + 2);
-        cons.push_back(r0);
-        cons.push_back(r1);
-        cons.insert(cons.end(), p.poly.edges.begin(), p.poly.edges.end());
-        if (line_region_nonempty(l0, l1, cons)) return false;
-        break;
-      }
+  for (const SoupPolygon& p : soup)
+    if (!add_crossing(seg, p, w)) return false;
+  return true;
+}
+
+bool add_crossing(const AxisSegment& s, const SoupPolygon& p, Wnv& w) {
+  if (box_disjoint(p, s.lo, s.hi)) return true;
+  const SegmentHit h = intersect_segment(s.line, s.r0, s.r1, p.poly);
+  switch (h.kind) {
+    case LineHit::Miss:
+      return true;
+    case LineHit::Boundary:
+      return false;
+    case LineHit::Interior:
+      if (h.at_endpoint) return false;
+      // Crossing along +axis through a polygon whose normal points along
+      // +axis goes from its back to its front: w drops by its transition.
+      w[p.operand] -= s.dir * p.poly.support.normal(s.line.axis).sign();
+      return true;
+    case LineHit::InPlane: {
+      std::vector<Plane> cons;
+      cons.reserve(p.poly.edges.size() + 2);
+      cons.push_back(s.r0);
+      cons.push_back(s.r1);
+      cons.insert(cons.end(), p.poly.edges.begin(), p.poly.edges.end());
+      return !line_region_nonempty(s.l0, s.l1, cons);
     }
   }
   return true;

@@ -18,6 +18,20 @@ bool line_region_nonempty(const Plane& l0, const Plane& l1, std::span<const Plan
 /// Same, but the region must have positive length (not a single point).
 bool line_region_has_length(const Plane& l0, const Plane& l1, std::span<const Plane> constraints);
 
+/// An axis-parallel segment: the line (l0, l1) = `line` (along `axis`, moving
+/// in direction `dir` = +-1) between the bounds r0 <= 0 and r1 <= 0.
+struct AxisSegment {
+  AxisLine line;
+  Plane l0, l1, r0, r1;
+  int dir = 1;
+  std::array<double, 3> lo{}, hi{};  ///< conservative bounding box
+};
+
+/// Adds polygon p's crossing of the segment to w. False when the segment
+/// meets p degenerately: at an edge or vertex, at a segment end, or touching
+/// it within p's plane.
+bool add_crossing(const AxisSegment& s, const SoupPolygon& p, Wnv& w);
+
 /// Adds to w the winding-number change from a to b, two dyadic points with the
 /// same shift that differ only in coordinate `axis`. Returns false when the
 /// segment meets a polygon degenerately; w is then unspecified.

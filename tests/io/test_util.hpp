@@ -10,6 +10,7 @@
 
 #include "ember/error.hpp"
 #include "ember/mesh.hpp"
+#include "ember/shapes.hpp"
 
 namespace ember::test {
 
@@ -62,26 +63,7 @@ inline Mesh awkward_mesh() {
 }
 
 /// UV sphere: closed triangle mesh with (rings-1)*segments+2 vertices.
-inline Mesh uv_sphere(int rings, int segments) {
-  Mesh m;
-  const double pi = std::acos(-1.0);
-  m.add_vertex({0, 0, 1});
-  for (int r = 1; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const double th = pi * r / rings, ph = 2 * pi * s / segments;
-      m.add_vertex({std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)});
-    }
-  const auto south = m.add_vertex({0, 0, -1});
-  const auto at = [&](int r, int s) { return std::uint32_t(1 + (r - 1) * segments + (s % segments)); };
-  for (int s = 0; s < segments; ++s) m.add_face({0, at(1, s), at(1, s + 1)});
-  for (int r = 1; r + 1 < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      m.add_face({at(r, s), at(r + 1, s), at(r + 1, s + 1)});
-      m.add_face({at(r, s), at(r + 1, s + 1), at(r, s + 1)});
-    }
-  for (int s = 0; s < segments; ++s) m.add_face({south, at(rings - 1, s + 1), at(rings - 1, s)});
-  return m;
-}
+inline Mesh uv_sphere(int rings, int segments) { return shapes::uv_sphere({0, 0, 0}, 1.0, segments, rings); }
 
 /// Exact equality including the sign of zero (operator== treats -0.0 == 0.0).
 inline bool bit_identical(const Mesh& a, const Mesh& b) {

@@ -93,18 +93,6 @@ inline int classify(const AxisPoint& x, const Plane& p) {
   return detail::filtered_sign(x.f, p, [&] { return classify_exact(x, p); });
 }
 
-/// Like locate(): -1 strictly inside the polygon, 0 on its boundary, +1
-/// outside (for a point on its support plane).
-inline int locate(const Polygon& poly, const AxisPoint& x) {
-  int worst = -1;
-  for (const Plane& e : poly.edges) {
-    const int s = classify(x, e);
-    if (s > 0) return 1;
-    if (s == 0) worst = 0;
-  }
-  return worst;
-}
-
 inline std::array<double, 3> approx(const AxisPoint& x) {
   const double w = x.w.to_double();
   return {x.c[0].to_double() / w, x.c[1].to_double() / w, x.c[2].to_double() / w};

@@ -38,7 +38,8 @@ std::optional<Polygon> make_convex_polygon(std::span<const IntPoint> pts);
 
 /// For a point ON the support plane: -1 strictly inside, 0 on the boundary
 /// (an edge or vertex), +1 outside. Exact.
-inline int locate(const Polygon& poly, const Point& pt) {
+template <typename P>  // Point or AxisPoint: anything classify() accepts
+int locate(const Polygon& poly, const P& pt) {
   int worst = -1;
   for (const Plane& e : poly.edges) {
     const int s = classify(pt, e);
