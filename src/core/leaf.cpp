@@ -145,7 +145,7 @@ void build_bsp(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, 
 /// (t and coplanar overlapping polygons), signed relative to t's orientation.
 /// `side` is the side of t's plane the path arrives from.
 bool trace_onto(const Soup& soup, const SoupPolygon& t, const Dyadic& start, int k, const AxisPoint& x, Wnv& w,
-                Wnv& delta, int& side) {
+                Wnv& delta, int& side, std::uint32_t skip) {
   const Plane& S = t.poly.support;
   side = classify(to_point(start), S);
   if (side == 0) return false;
@@ -167,7 +167,7 @@ bool trace_onto(const Soup& soup, const SoupPolygon& t, const Dyadic& start, int
   delta.assign(w.size(), 0);
   delta[t.operand] += 1;
   for (const SoupPolygon& p : soup) {
-    if (p.id == t.id) continue;
+    if (p.id == t.id || p.operand == skip) continue;
     if (coplanar(p.poly.support, S)) {
       // Meets the segment only at x (the segment is transverse to S).
       if (box_disjoint(p, seg.lo, seg.hi)) continue;
@@ -196,7 +196,7 @@ std::uint64_t mix(std::uint64_t x) {
 /// strictly inside the piece's projection or the path meets something
 /// degenerately.
 bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Polygon& f, const Dyadic& target, int k,
-                      bool i_first, Wnv& w, Wnv& delta, Wnv& w_front, Wnv& w_back) {
+                      bool i_first, bool solid, Wnv& w, Wnv& delta, Wnv& w_front, Wnv& w_back) {
   const Plane& S = t.poly.support;
   AxisPoint x;
   if (!meet(axis_line(target, k), S, x) || locate(f, x) >= 0) return false;
@@ -204,8 +204,11 @@ bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Polygon&
   const std::array<int, 3> order = i_first ? std::array<int, 3>{i, j, k} : std::array<int, 3>{j, i, k};
   w = pb.ref_w;
   int side = 0;
-  if (!trace_path(pb.soup, pb.ref, target, order, w)) return false;
-  if (!trace_onto(pb.soup, t, target, k, x, w, delta, side)) return false;
+  // A solid operand's own polygons never cross t and its winding number is
+  // 0 in front of t and 1 behind: they need not be traced at all.
+  const std::uint32_t skip = solid ? t.operand : kNoSkip;
+  if (!trace_path(pb.soup, pb.ref, target, order, w, skip)) return false;
+  if (!trace_onto(pb.soup, t, target, k, x, w, delta, side, skip)) return false;
   w_front = w;
   w_back = w;
   for (std::size_t o = 0; o < w.size(); ++o) {
@@ -215,6 +218,10 @@ bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Polygon&
       w_front[o] -= delta[o];
     }
   }
+  if (solid) {
+    w_front[t.operand] = 0;
+    w_back[t.operand] = 1;
+  }
   return true;
 }
 
@@ -222,8 +229,8 @@ bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Polygon&
 /// approximations first (fast, fine for all but slivers), then from exact
 /// centroids of vertex triples computed by long division, which also find
 /// slivers far thinner than a double can resolve at these coordinates.
-bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f, std::uint64_t seed, Wnv& w_front,
-                    Wnv& w_back, LeafScratch& scratch) {
+bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f, bool solid, std::uint64_t seed,
+                    Wnv& w_front, Wnv& w_back, LeafScratch& scratch) {
   const Plane& S = t.poly.support;
   const int k = dominant_axis(S);
   const int i = (k + 1) % 3, j = (k + 2) % 3;
@@ -249,7 +256,7 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
       target.num[j] = static_cast<__int128>(std::nearbyint(cj * scale));
       AxisPoint x;
       if (!meet(axis_line(target, k), S, x) || locate(f, x) >= 0) continue;
-      if (classify_through(pb, t, f, target, k, attempt % 2 == 0, w, delta, w_front, w_back)) return true;
+      if (classify_through(pb, t, f, target, k, attempt % 2 == 0, solid, w, delta, w_front, w_back)) return true;
       break;  // inside but the path is degenerate: next guess
     }
   }
@@ -271,7 +278,7 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
         target.num[axis] = q;
       }
       for (const bool i_first : {true, false})
-        if (classify_through(pb, t, f, target, k, i_first, w, delta, w_front, w_back)) return true;
+        if (classify_through(pb, t, f, target, k, i_first, solid, w, delta, w_front, w_back)) return true;
     }
   }
   return false;
@@ -287,7 +294,8 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
     build_bsp(pb.soup, t, ctx, scratch, pieces);
     for (std::size_t n = 0; n < pieces.size(); ++n) {
       if (pieces[n].disabled) continue;
-      if (!classify_piece(pb, t, pieces[n].poly, (static_cast<std::uint64_t>(t.id) << 20) ^ n, w_front, w_back,
+      if (!classify_piece(pb, t, pieces[n].poly, ctx.solid[t.operand] != 0, (static_cast<std::uint64_t>(t.id) << 20) ^ n,
+                          w_front, w_back,
                           scratch))
         throw Error("ember: could not classify a polygon piece (no non-degenerate trace path found); "
                     "this input is too degenerate for the current implementation");

@@ -45,7 +45,7 @@ bool line_region_has_length(const Plane& l0, const Plane& l1, std::span<const Pl
   return false;
 }
 
-bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int axis, Wnv& w) {
+bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int axis, Wnv& w, std::uint32_t skip) {
   const int dir = a.num[axis] < b.num[axis] ? 1 : (a.num[axis] > b.num[axis] ? -1 : 0);
   if (dir == 0) return true;
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -62,7 +62,7 @@ bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int 
     seg.hi[i] = std::max(approx_coord(a, i), approx_coord(b, i));
   }
   for (const SoupPolygon& p : soup)
-    if (!add_crossing(seg, p, w)) return false;
+    if (p.operand != skip && !add_crossing(seg, p, w)) return false;
   return true;
 }
 
@@ -92,7 +92,8 @@ bool add_crossing(const AxisSegment& s, const SoupPolygon& p, Wnv& w) {
   return true;
 }
 
-bool trace_path(const Soup& soup, const Dyadic& a, const Dyadic& b, const std::array<int, 3>& order, Wnv& w) {
+bool trace_path(const Soup& soup, const Dyadic& a, const Dyadic& b, const std::array<int, 3>& order, Wnv& w,
+                std::uint32_t skip) {
   const int s = std::max(a.shift, b.shift);
   Dyadic cur = with_shift(a, s);
   const Dyadic end = with_shift(b, s);
@@ -100,7 +101,7 @@ bool trace_path(const Soup& soup, const Dyadic& a, const Dyadic& b, const std::a
     if (cur.num[axis] == end.num[axis]) continue;
     Dyadic next = cur;
     next.num[axis] = end.num[axis];
-    if (!trace_axis_segment(soup, cur, next, axis, w)) return false;
+    if (!trace_axis_segment(soup, cur, next, axis, w, skip)) return false;
     cur = next;
   }
   return true;

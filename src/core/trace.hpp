@@ -32,13 +32,20 @@ struct AxisSegment {
 /// it within p's plane.
 bool add_crossing(const AxisSegment& s, const SoupPolygon& p, Wnv& w);
 
+/// Polygons of this operand are ignored by a trace (its winding number is
+/// known otherwise); kNoSkip counts every polygon.
+inline constexpr std::uint32_t kNoSkip = 0xffffffffu;
+
 /// Adds to w the winding-number change from a to b, two dyadic points with the
 /// same shift that differ only in coordinate `axis`. Returns false when the
-/// segment meets a polygon degenerately; w is then unspecified.
-bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int axis, Wnv& w);
+/// segment meets a polygon degenerately; w is then unspecified. w[skip] is
+/// not maintained.
+bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int axis, Wnv& w,
+                        std::uint32_t skip = kNoSkip);
 
 /// Axis-parallel path a -> b changing coordinates in the given order (each
 /// segment moves one coordinate). Same contract as trace_axis_segment.
-bool trace_path(const Soup& soup, const Dyadic& a, const Dyadic& b, const std::array<int, 3>& order, Wnv& w);
+bool trace_path(const Soup& soup, const Dyadic& a, const Dyadic& b, const std::array<int, 3>& order, Wnv& w,
+                std::uint32_t skip = kNoSkip);
 
 }  // namespace ember::core
