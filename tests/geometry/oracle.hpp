@@ -9,21 +9,9 @@
 #include <random>
 
 #include "ember/geometry.hpp"
+#include "support/int_gmp.hpp"
 
 namespace ember::test {
-
-template <int B>
-mpz_class to_mpz(const Int<B>& v) {
-  // Two's complement limbs -> value: unsigned reading minus 2^(64L) if negative.
-  constexpr int L = Int<B>::limbs;
-  mpz_class r = 0;
-  for (int i = L - 1; i >= 0; --i) {
-    r <<= 64;
-    r += mpz_class(static_cast<unsigned long>(v.limb(i)));
-  }
-  if (v.negative()) r -= mpz_class(1) << (64 * L);
-  return r;
-}
 
 inline mpz_class mpz64(std::int64_t v) { return mpz_class(static_cast<long>(v)); }
 
