@@ -102,12 +102,7 @@ std::string write_obj(const Mesh& mesh) {
   out += "# written by ember\n";
   for (const Vec3d& v : mesh.vertices) {
     out += "v ";
-    io_detail::append_real(out, v.x);
-    out += ' ';
-    io_detail::append_real(out, v.y);
-    out += ' ';
-    io_detail::append_real(out, v.z);
-    out += '\n';
+    io_detail::append_xyz_line(out, v);
   }
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     out += 'f';

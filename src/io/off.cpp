@@ -97,14 +97,7 @@ std::string write_off(const Mesh& mesh) {
   out += ' ';
   io_detail::append_uint(out, mesh.face_count());
   out += " 0\n";
-  for (const Vec3d& v : mesh.vertices) {
-    io_detail::append_real(out, v.x);
-    out += ' ';
-    io_detail::append_real(out, v.y);
-    out += ' ';
-    io_detail::append_real(out, v.z);
-    out += '\n';
-  }
+  for (const Vec3d& v : mesh.vertices) io_detail::append_xyz_line(out, v);
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     io_detail::append_uint(out, mesh.face_size(f));
     for (std::uint32_t i : mesh.face(f)) {

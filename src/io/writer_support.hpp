@@ -19,6 +19,16 @@ inline void append_real(std::string& out, double v) {
   out.append(buf, r.ptr);
 }
 
+/// "x y z\n" with round-trip precision (the vertex line of OBJ and OFF).
+inline void append_xyz_line(std::string& out, const Vec3d& v) {
+  append_real(out, v.x);
+  out += ' ';
+  append_real(out, v.y);
+  out += ' ';
+  append_real(out, v.z);
+  out += '\n';
+}
+
 inline void append_uint(std::string& out, std::uint64_t v) {
   char buf[24];
   auto r = std::to_chars(buf, buf + sizeof buf, v);
