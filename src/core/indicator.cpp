@@ -1,7 +1,6 @@
 #include "core/indicator.hpp"
 
 #include <string>
-#include <vector>
 
 #include "ember/error.hpp"
 
@@ -9,20 +8,18 @@ namespace ember {
 
 namespace core {
 
-bool inside_by_flags(Operation op, int min_k, std::span<const char> inside) {
-  int count = 0;
-  for (const char f : inside) count += f != 0;
+bool inside_by_count(Operation op, int min_k, std::size_t operands, std::size_t inside, bool first_inside) {
   switch (op) {
     case Operation::Union:
-      return count > 0;
+      return inside > 0;
     case Operation::Intersection:
-      return count == static_cast<int>(inside.size());
+      return inside == operands;
     case Operation::Difference:
-      return inside[0] != 0 && count == 1;
+      return first_inside && inside == 1;
     case Operation::Xor:
-      return count % 2 == 1;
+      return inside % 2 == 1;
     case Operation::AtLeastK:
-      return count >= min_k;
+      return inside >= static_cast<std::size_t>(min_k);
   }
   return false;
 }
@@ -47,10 +44,11 @@ Indicator indicator_for(Operation op, std::size_t operands, int min_k) {
     default:
       throw Error("boolean: unknown operation");
   }
+  // Counting in place keeps the per-piece indicator call allocation-free.
   return [op, min_k](WindingVector w) {
-    std::vector<char> flags(w.size());
-    for (std::size_t i = 0; i < w.size(); ++i) flags[i] = w[i] != 0;
-    return core::inside_by_flags(op, min_k, flags);
+    std::size_t count = 0;
+    for (const int x : w) count += x != 0;
+    return core::inside_by_count(op, min_k, w.size(), count, !w.empty() && w[0] != 0);
   };
 }
 

@@ -6,7 +6,15 @@
 
 namespace ember::core {
 
+/// Every built-in operation depends only on how many of the `operands` contain
+/// the point and on whether the first one does.
+bool inside_by_count(Operation op, int min_k, std::size_t operands, std::size_t inside, bool first_inside);
+
 /// Inside the result of `op` given per-operand inside flags.
-bool inside_by_flags(Operation op, int min_k, std::span<const char> inside);
+inline bool inside_by_flags(Operation op, int min_k, std::span<const char> inside) {
+  std::size_t count = 0;
+  for (const char f : inside) count += f != 0;
+  return inside_by_count(op, min_k, inside.size(), count, !inside.empty() && inside[0] != 0);
+}
 
 }  // namespace ember::core

@@ -29,13 +29,6 @@ struct SolveContext {
   std::size_t leaf_size = 24;  ///< subdivide while a subproblem has more polygons
 };
 
-struct Subproblem;
-/// Early termination (Section 4.5.2): true when every winding-number vector
-/// reachable inside the subproblem maps to the same side of the indicator,
-/// so it cannot contribute output. Operands without polygons in the
-/// subproblem keep the reference point's winding number.
-bool indicator_constant(const Subproblem& problem, const SolveContext& ctx);
-
 /// A self-contained subproblem: polygons clipped to a closed integer box and a
 /// reference point strictly inside the box with its winding-number vector.
 struct Subproblem {
@@ -44,6 +37,12 @@ struct Subproblem {
   Dyadic ref;
   Wnv ref_w;
 };
+
+/// Early termination (Section 4.5.2): true when every winding-number vector
+/// reachable inside the subproblem maps to the same side of the indicator,
+/// so it cannot contribute output. Operands without polygons in the
+/// subproblem keep the reference point's winding number.
+bool indicator_constant(const Subproblem& problem, const SolveContext& ctx);
 
 /// Solves a subproblem; output polygons come in a deterministic order that
 /// does not depend on scheduling.
