@@ -26,7 +26,7 @@ struct SolveContext {
   /// Per operand: solid (closed, outward, no self-intersections, no nested or
   /// touching components: w in {0, 1}). Enables the shortcuts of Fig. 11.
   std::vector<char> solid;
-  std::size_t leaf_size = 24;  ///< subdivide while a subproblem has more polygons
+  std::size_t leaf_size = 64;  ///< subdivide while a subproblem has more polygons (tuned: docs/benchmark.md)
 };
 
 /// A self-contained subproblem: polygons clipped to a closed integer box and a
