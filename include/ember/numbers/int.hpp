@@ -162,6 +162,10 @@ class Int {
     if constexpr (limbs == 1) {
       return static_cast<double>(v_);
     } else if constexpr (limbs == 2) {
+      // Most values fit 64 bits; converting those skips libgcc's __int128
+      // routine. Both conversions round correctly, so the result is the same.
+      const auto low = static_cast<std::int64_t>(v_);
+      if (static_cast<__int128>(low) == v_) return static_cast<double>(low);
       return static_cast<double>(v_);
     } else {
       const Int m = abs();
