@@ -16,6 +16,32 @@ namespace ember::core {
 
 namespace {
 
+/// Per operand present in a subproblem: how many polygons, their bounding
+/// box, and (filled by choose_split) the centroid sample. One pass over the
+/// soup serves the early-outs and the split choice.
+struct OperandSummary {
+  std::array<double, 3> lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, sum{};
+  std::size_t count = 0, sampled = 0;
+};
+struct SoupSummary {
+  std::vector<OperandSummary> ops;     ///< indexed by operand
+  std::vector<std::uint32_t> present;  ///< operands with polygons, in order of first appearance
+};
+
+SoupSummary summarize(const Soup& soup, std::size_t operands) {
+  SoupSummary sum;
+  sum.ops.resize(operands);
+  for (const SoupPolygon& p : soup) {
+    OperandSummary& s = sum.ops[p.operand];
+    if (s.count++ == 0) sum.present.push_back(p.operand);
+    for (int a = 0; a < 3; ++a) {
+      s.lo[a] = std::min(s.lo[a], p.lo[a]);
+      s.hi[a] = std::max(s.hi[a], p.hi[a]);
+    }
+  }
+  return sum;
+}
+
 /// The axis to split and the position, or -1 when the box cannot be split
 /// (a split position must lie strictly inside, so the extent must be >= 2).
 ///
@@ -25,30 +51,17 @@ namespace {
 /// one side of it holds no polygon of j, so the early terminations get a
 /// chance there. The candidate farthest from the centroid wins; without one,
 /// the longest axis is halved (the paper's baseline).
-int choose_split(const Subproblem& pb, std::int64_t& position) {
+int choose_split(const Subproblem& pb, SoupSummary& summary, std::int64_t& position) {
   const Box& box = pb.box;
-  struct Summary {
-    std::array<double, 3> lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, sum{};
-    std::size_t count = 0, sampled = 0;
-  };
-  std::vector<Summary> ops;
-  std::vector<std::uint32_t> present;
-  for (const SoupPolygon& p : pb.soup) {
-    if (p.operand >= ops.size()) ops.resize(p.operand + 1);
-    Summary& s = ops[p.operand];
-    if (s.count++ == 0) present.push_back(p.operand);
-    for (int a = 0; a < 3; ++a) {
-      s.lo[a] = std::min(s.lo[a], p.lo[a]);
-      s.hi[a] = std::max(s.hi[a], p.hi[a]);
-    }
-  }
+  std::vector<OperandSummary>& ops = summary.ops;
+  const std::vector<std::uint32_t>& present = summary.present;
   if (present.size() > 1) {
     // Centroids from a deterministic subset (every k-th polygon).
     constexpr std::size_t kSample = 64;
     const std::size_t step = std::max<std::size_t>(1, pb.soup.size() / kSample);
     for (std::size_t n = 0; n < pb.soup.size(); n += step) {
       const SoupPolygon& p = pb.soup[n];
-      Summary& s = ops[p.operand];
+      OperandSummary& s = ops[p.operand];
       for (int a = 0; a < 3; ++a) s.sum[a] += 0.5 * (p.lo[a] + p.hi[a]);
       ++s.sampled;
     }
@@ -221,11 +234,11 @@ void split_soup(Soup&& soup, int axis, std::int64_t position, Soup& left, Soup& 
 /// operand o, each has w_o = 0 in front and 1 behind, and all other winding
 /// numbers equal the reference point's (nothing else is in the box), so all
 /// polygons share one classification and no trace is needed.
-bool emit_single_solid(Subproblem& pb, const SolveContext& ctx, std::vector<OutputPolygon>& out) {
-  const std::uint32_t o = pb.soup.front().operand;
+bool emit_single_solid(Subproblem& pb, const SolveContext& ctx, const SoupSummary& summary,
+                       std::vector<OutputPolygon>& out) {
+  if (summary.present.size() != 1) return false;
+  const std::uint32_t o = summary.present.front();
   if (!ctx.solid[o]) return false;
-  for (const SoupPolygon& p : pb.soup)
-    if (p.operand != o) return false;
   Wnv front = pb.ref_w, back = pb.ref_w;
   front[o] = 0;
   back[o] = 1;
@@ -238,16 +251,14 @@ bool emit_single_solid(Subproblem& pb, const SolveContext& ctx, std::vector<Outp
 
 }  // namespace
 
-bool indicator_constant(const Subproblem& pb, const SolveContext& ctx) {
+namespace {
+/// indicator_constant for a subproblem whose operands with polygons are `present`.
+bool indicator_constant(const Subproblem& pb, const SolveContext& ctx, const std::vector<std::uint32_t>& present) {
   if (!ctx.inside_flags) return false;
-  std::vector<char> present(ctx.operands, 0);
-  for (const SoupPolygon& p : pb.soup) present[p.operand] = 1;
-  std::vector<std::size_t> free;
   std::vector<char> flags(ctx.operands);
-  for (std::size_t i = 0; i < ctx.operands; ++i) {
-    flags[i] = pb.ref_w[i] != 0;
-    if (present[i]) free.push_back(i);
-  }
+  for (std::size_t i = 0; i < ctx.operands; ++i) flags[i] = pb.ref_w[i] != 0;
+  std::vector<std::uint32_t> free(present.begin(), present.end());
+  std::sort(free.begin(), free.end());
   constexpr std::size_t kMaxEnumerated = 12;  // 4096 evaluations at most
   if (free.size() > kMaxEnumerated) return false;
   bool first = true, value = false;
@@ -263,16 +274,34 @@ bool indicator_constant(const Subproblem& pb, const SolveContext& ctx) {
   }
   return true;
 }
+}  // namespace
 
-std::vector<OutputPolygon> solve(Subproblem&& pb, const SolveContext& ctx) {
+bool indicator_constant(const Subproblem& pb, const SolveContext& ctx) {
+  return indicator_constant(pb, ctx, summarize(pb.soup, ctx.operands).present);
+}
+
+namespace {
+
+/// Output chunks in deterministic order: each leaf (or single-solid box)
+/// fills one chunk, and parents concatenate their children's chunk lists, so
+/// a polygon moves once (when flattened), not once per level.
+using OutputChunks = std::vector<std::vector<OutputPolygon>>;
+
+void solve_into(Subproblem&& pb, const SolveContext& ctx, OutputChunks& chunks) {
+  if (pb.soup.empty()) return;
+  SoupSummary summary = summarize(pb.soup, ctx.operands);
+  if (indicator_constant(pb, ctx, summary.present)) return;
   std::vector<OutputPolygon> out;
-  if (pb.soup.empty() || indicator_constant(pb, ctx)) return out;
-  if (emit_single_solid(pb, ctx, out)) return out;
+  if (emit_single_solid(pb, ctx, summary, out)) {
+    if (!out.empty()) chunks.push_back(std::move(out));
+    return;
+  }
   std::int64_t position = 0;
-  const int axis = pb.soup.size() > ctx.leaf_size ? choose_split(pb, position) : -1;
+  const int axis = pb.soup.size() > ctx.leaf_size ? choose_split(pb, summary, position) : -1;
   if (axis < 0) {
     solve_leaf(pb, ctx, out);
-    return out;
+    if (!out.empty()) chunks.push_back(std::move(out));
+    return;
   }
   Subproblem lower, upper;
   lower.box = upper.box = pb.box;
@@ -288,14 +317,27 @@ std::vector<OutputPolygon> solve(Subproblem&& pb, const SolveContext& ctx) {
   if (!move_reference(pb, moves.box, axis, position, moves.ref, moves.ref_w))
     throw Error("ember: no valid reference path into a subproblem; the input is too degenerate for this version");
   split_soup(std::move(pb.soup), axis, position, lower.soup, upper.soup);
+  pb.soup = Soup{};
 
-  std::vector<OutputPolygon> out_lower, out_upper;
+  OutputChunks chunks_upper;
   tbb::task_group group;
-  group.run([&] { out_lower = solve(std::move(lower), ctx); });
-  out_upper = solve(std::move(upper), ctx);
+  group.run([&] { solve_into(std::move(lower), ctx, chunks); });
+  solve_into(std::move(upper), ctx, chunks_upper);
   group.wait();
-  out = std::move(out_lower);
-  out.insert(out.end(), std::make_move_iterator(out_upper.begin()), std::make_move_iterator(out_upper.end()));
+  chunks.insert(chunks.end(), std::make_move_iterator(chunks_upper.begin()),
+                std::make_move_iterator(chunks_upper.end()));
+}
+
+}  // namespace
+
+std::vector<OutputPolygon> solve(Subproblem&& pb, const SolveContext& ctx) {
+  OutputChunks chunks;
+  solve_into(std::move(pb), ctx, chunks);
+  std::size_t total = 0;
+  for (const auto& c : chunks) total += c.size();
+  std::vector<OutputPolygon> out;
+  out.reserve(total);
+  for (auto& c : chunks) out.insert(out.end(), std::make_move_iterator(c.begin()), std::make_move_iterator(c.end()));
   return out;
 }
 
