@@ -6,6 +6,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <chrono>
@@ -238,11 +239,16 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   std::vector<std::size_t> open(operands.size(), 0);
   std::vector<std::optional<core::SoupPolygon>> built(triangles.size());
   arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, operands.size(), [&](std::size_t o) {
-      std::vector<std::array<IntPoint, 3>> corners;
-      corners.reserve(operand_begin[o + 1] - operand_begin[o]);
-      for (std::size_t i = operand_begin[o]; i < operand_begin[o + 1]; ++i) corners.push_back(triangles[i].p);
-      open[o] = count_open_edges(corners);
+    // The closedness check (hashing, per operand) runs beside the triangle
+    // construction instead of before it.
+    tbb::task_group closedness;
+    closedness.run([&] {
+      tbb::parallel_for(std::size_t{0}, operands.size(), [&](std::size_t o) {
+        std::vector<std::array<IntPoint, 3>> corners;
+        corners.reserve(operand_begin[o + 1] - operand_begin[o]);
+        for (std::size_t i = operand_begin[o]; i < operand_begin[o + 1]; ++i) corners.push_back(triangles[i].p);
+        open[o] = count_open_edges(corners);
+      });
     });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 512),
                       [&](const tbb::blocked_range<std::size_t>& r) {
@@ -254,6 +260,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
                           core::update_bounds(*built[i]);
                         }
                       });
+    closedness.wait();
   });
   for (std::size_t o = 0; o < operands.size(); ++o) {
     if (open[o] == 0) continue;

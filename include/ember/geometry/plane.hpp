@@ -25,10 +25,14 @@ inline bool in_range(const IntPoint& p) {
 }
 
 namespace detail {
-inline void require_in_range(const IntPoint& p) {
-  if (!in_range(p))
-    throw Error("ember geometry: grid point (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
+/// The error path, kept out of line so the range check inlines into callers.
+[[noreturn, gnu::noinline, gnu::cold]] inline void throw_out_of_range(const IntPoint& p) {
+  throw Error("ember geometry: grid point (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
                 std::to_string(p.z) + ") exceeds the coordinate limit 2^25; quantize the input into [-2^25, 2^25]");
+}
+inline void require_in_range(const IntPoint& p) {
+  if (!in_range(p)) [[unlikely]]
+    throw_out_of_range(p);
 }
 }  // namespace detail
 
