@@ -9,7 +9,7 @@
 //       tools, Manifold included, get bit-identical input) and writes the
 //       benchmark's binary format (meshbin.hpp). Prints {"triangles":..,"vertices":..}.
 //
-//   ember_bench run A.bin B.bin [--ops ..] [--runs R] [--budget-ms B] [--threads T] [--solid]
+//   ember_bench run A.bin B.bin [--ops ..] [--runs R] [--budget-ms B] [--threads T] [--solid] [--no-detect]
 //       Times ember::boolean in-process: building the two ember::Mesh from the
 //       flat arrays + the Boolean (its output is already flat arrays). One JSON
 //       line per operation (runner_common.hpp).
@@ -127,6 +127,7 @@ int run(int argc, char** argv) {
     ember::BooleanOptions opt;
     opt.threads = args.threads;
     opt.all_solid = args.solid;
+    opt.detect_solid = !args.no_detect;
     ember::BooleanResult last;
     bench::time_op(
         "ember", args, op, in_tris,

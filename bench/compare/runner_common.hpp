@@ -28,6 +28,7 @@ struct RunnerArgs {
   double budget_ms = 1e300;  // stop repeating once this much time was spent (at least one run)
   int threads = 1;
   bool solid = false;  // ember only: BooleanOptions::all_solid (--assume-solid)
+  bool no_detect = false;  // ember only: BooleanOptions::detect_solid = false
 };
 
 inline RunnerArgs parse_runner_args(int argc, char** argv, int first) {
@@ -52,6 +53,8 @@ inline RunnerArgs parse_runner_args(int argc, char** argv, int first) {
       r.threads = std::stoi(next());
     } else if (s == "--solid") {
       r.solid = true;
+    } else if (s == "--no-detect") {
+      r.no_detect = true;
     } else {
       pos.push_back(s);
     }

@@ -1,7 +1,7 @@
 // The `ember` command line: exact mesh Booleans on files.
 //
 //   ember union|intersection|difference|xor A B [C ...] -o OUT
-//         [--min-k K] [--threads N] [--stats] [--allow-open] [--assume-solid]
+//         [--min-k K] [--threads N] [--stats] [--allow-open] [--assume-solid] [--no-solid-check]
 //   ember demo [-o DIR] [--threads N]
 //
 // Formats follow the file extension (.obj .stl .ply .off). Errors print one
@@ -64,9 +64,9 @@ void write_atomically(const ember::Mesh& mesh, const fs::path& out) {
 void print_stats(const ember::BooleanResult& r, const char* op) {
   std::fprintf(stderr,
                "{\"operation\": \"%s\", \"input_triangles\": %zu, \"dropped_degenerate\": %zu, "
-               "\"output_polygons\": %zu, \"time_ms\": %.3f, \"threads\": %d}\n",
-               op, r.stats.input_triangles, r.stats.dropped_degenerate, r.stats.output_polygons, r.stats.time_ms,
-               r.stats.threads);
+               "\"output_polygons\": %zu, \"solid_operands\": %zu, \"time_ms\": %.3f, \"threads\": %d}\n",
+               op, r.stats.input_triangles, r.stats.dropped_degenerate, r.stats.output_polygons,
+               r.stats.solid_operands, r.stats.time_ms, r.stats.threads);
 }
 
 /// The library names inputs "operand i"; the user knows them by file name.
@@ -89,6 +89,7 @@ struct BooleanArgs {
   bool stats = false;
   bool allow_open = false;
   bool assume_solid = false;
+  bool no_solid_check = false;
 };
 
 int run_boolean(ember::Operation op, const BooleanArgs& a) {
@@ -96,6 +97,7 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
   options.threads = a.threads;
   options.allow_open = a.allow_open;
   options.all_solid = a.assume_solid;
+  options.detect_solid = !a.no_solid_check;
   if (a.min_k > 0) {  // main() allows --min-k with union only
     op = ember::Operation::AtLeastK;
     options.min_k = a.min_k;
@@ -169,7 +171,10 @@ int main(int argc, char** argv) {
     sub->add_flag("--allow-open", args.allow_open, "Accept inputs that are not closed (warns)");
     sub->add_flag("--assume-solid", args.assume_solid,
                   "Promise every input is solid (closed, outward, no self-intersections, no nested or touching "
-                  "components): much faster; a false promise gives a wrong result");
+                  "components): skips the solid check; a false promise gives a wrong result");
+    sub->add_flag("--no-solid-check", args.no_solid_check,
+                  "Do not try to prove inputs solid (by default each closed input is checked exactly and, "
+                  "if solid, takes the fast path); saves the check's time on inputs known to fail it");
     subs.emplace_back(sub, c.op);
   }
   std::string demo_dir = "ember-demo";

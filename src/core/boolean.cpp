@@ -18,6 +18,8 @@
 
 #include "core/indicator.hpp"
 #include "core/solve.hpp"
+#include "core/solid_check.hpp"
+#include "core/weld.hpp"
 #include "ember/core/quantize.hpp"
 #include "ember/error.hpp"
 
@@ -49,52 +51,16 @@ void validate(const Mesh& m, std::size_t index) {
   }
 }
 
-struct PointHash {
-  std::size_t operator()(const IntPoint& p) const {
-    std::uint64_t h = static_cast<std::uint64_t>(p.x) * 0x9e3779b97f4a7c15ULL;
-    h ^= static_cast<std::uint64_t>(p.y) + 0x7f4a7c159e3779b9ULL + (h << 6) + (h >> 2);
-    h ^= static_cast<std::uint64_t>(p.z) + 0x94d049bb133111ebULL + (h << 6) + (h >> 2);
-    return h;
-  }
-};
-
 /// Counts edges whose uses in one direction are not matched by uses in the
 /// other (on the quantized positions, degenerate triangles included, so the
 /// test describes the surface the core actually sees). Zero means closed.
 std::size_t count_open_edges(const std::vector<std::array<IntPoint, 3>>& triangles) {
-  // Weld equal positions to ids, then balance directed edges bucketed by
-  // their lower id (a counting sort: linear, and buckets are tiny).
-  std::unordered_map<IntPoint, std::uint32_t, PointHash> ids;
-  ids.reserve(triangles.size());
-  std::vector<std::array<std::uint32_t, 3>> tri_ids(triangles.size());
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (int e = 0; e < 3; ++e)
-      tri_ids[t][e] = ids.try_emplace(triangles[t][e], static_cast<std::uint32_t>(ids.size())).first->second;
-  std::vector<std::uint32_t> start(ids.size() + 1, 0);
-  for (const auto& v : tri_ids)
-    for (int e = 0; e < 3; ++e)
-      if (v[e] != v[(e + 1) % 3]) ++start[std::min(v[e], v[(e + 1) % 3]) + 1];
-  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
-  std::vector<std::pair<std::uint32_t, int>> edges(start.back());  // (higher id, +1 if lower -> higher)
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-  for (const auto& v : tri_ids)
-    for (int e = 0; e < 3; ++e) {
-      const std::uint32_t a = v[e], b = v[(e + 1) % 3];
-      if (a == b) continue;
-      edges[fill[std::min(a, b)]++] = {std::max(a, b), a < b ? 1 : -1};
-    }
   std::size_t open = 0;
-  for (std::size_t i = 0; i + 1 < start.size(); ++i) {
-    auto first = edges.begin() + start[i], last = edges.begin() + start[i + 1];
-    std::sort(first, last);
-    for (auto it = first; it != last;) {
-      int balance = 0;
-      auto jt = it;
-      for (; jt != last && jt->first == it->first; ++jt) balance += jt->second;
-      open += balance != 0;
-      it = jt;
-    }
-  }
+  core::for_each_edge(core::weld(triangles), [&](std::span<const core::EdgeUse> uses) {
+    int balance = 0;
+    for (const core::EdgeUse& u : uses) balance += u.forward ? 1 : -1;
+    open += balance != 0;
+  });
   return open;
 }
 
@@ -273,6 +239,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   // coplanar overlaps, independent of scheduling.
   core::Soup soup;
   std::vector<Source> sources;
+  std::vector<std::array<IntPoint, 3>> corners;  // by soup id, for the solid proof
   soup.reserve(triangles.size());
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     if (!built[i]) {
@@ -281,6 +248,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     }
     built[i]->id = static_cast<std::uint32_t>(sources.size());
     sources.push_back(triangles[i].source);
+    if (options.detect_solid) corners.push_back(triangles[i].p);
     soup.push_back(std::move(*built[i]));
   }
   built = {};
@@ -305,6 +273,16 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       };
     ctx.solid.assign(operands.size(), options.all_solid ? 1 : 0);
     for (std::size_t i = 0; i < options.solid.size(); ++i) ctx.solid[i] |= options.solid[i] ? 1 : 0;
+    if (options.detect_solid) {
+      // Operands not promised solid are proven solid (or not) exactly.
+      for (std::size_t o = 0; o < operands.size(); ++o)
+        if (!ctx.solid[o] && open[o] == 0)
+          arena.execute([&] {
+            ctx.solid[o] = core::check_solid(root, corners, static_cast<std::uint32_t>(o)) == core::SolidVerdict::Solid;
+          });
+      corners = {};
+    }
+    for (const char s : ctx.solid) result.stats.solid_operands += s != 0;
     arena.execute([&] { polys = core::solve(std::move(root), ctx); });
   }
   arena.execute([&] { result.mesh = export_mesh(polys, q, sources, result.provenance, result.stats.dropped_slivers); });

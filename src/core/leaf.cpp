@@ -337,6 +337,11 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
 
 }  // namespace
 
+bool classify_polygon(const Subproblem& pb, const SoupPolygon& t, Wnv& w_front, Wnv& w_back) {
+  LeafScratch scratch;
+  return classify_piece(pb, t, t.poly, false, t.id, w_front, w_back, scratch);
+}
+
 void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<OutputPolygon>& out) {
   Wnv w_front, w_back;
   LeafScratch scratch;

@@ -48,6 +48,12 @@ bool indicator_constant(const Subproblem& problem, const SolveContext& ctx);
 /// does not depend on scheduling.
 std::vector<OutputPolygon> solve(Subproblem&& problem, const SolveContext& ctx);
 
+/// Winding-number vectors just in front of and behind polygon t of pb's soup
+/// (the whole polygon, which must not be crossed or overlapped by any other
+/// polygon of the soup), traced from pb's reference point. False if no valid
+/// path was found.
+bool classify_polygon(const Subproblem& problem, const SoupPolygon& t, Wnv& w_front, Wnv& w_back);
+
 /// Leaf computation (exposed for tests).
 void solve_leaf(const Subproblem& problem, const SolveContext& ctx, std::vector<OutputPolygon>& out);
 

@@ -294,6 +294,23 @@ TEST(Cli, StatsPrintsOneJsonObjectOnStderr) {
   }
 }
 
+TEST(Cli, SolidCheckIsOnByDefaultAndCanBeSwitchedOff) {
+  TempDir dir;
+  const std::string a = put(dir, "a.obj", box_a()), b = put(dir, "b.obj", box_b());
+  const fs::path out = dir / "out.obj";
+  const auto solid_operands = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args{"union", a, b, "-o", out.string(), "--stats"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult r = run_cli(dir, args);
+    EXPECT_EQ(r.exit_code, 0) << describe(r);
+    return json_number(r.err, "solid_operands");
+  };
+  EXPECT_EQ(solid_operands({}), 2);                    // both boxes proven solid
+  EXPECT_EQ(solid_operands({"--no-solid-check"}), 0);  // general path
+  EXPECT_EQ(solid_operands({"--assume-solid"}), 2);    // promised
+  EXPECT_EQ(solid_operands({"--assume-solid", "--no-solid-check"}), 2);
+}
+
 TEST(Cli, ThreadCountDoesNotChangeTheOutputBytes) {
   TempDir dir;
   const Mesh torus = ember::test::torus({0, 0, 0}, 1.0, 0.4, 40, 20);
@@ -632,7 +649,7 @@ TEST(Cli, HelpMentionsEverySubcommand) {
   // Subcommand help lists the options.
   const RunResult u = run_cli(dir, {"union", "--help"});
   ASSERT_EQ(u.exit_code, 0) << describe(u);
-  for (const char* opt : {"--min-k", "--threads", "--stats", "--allow-open", "-o"})
+  for (const char* opt : {"--min-k", "--threads", "--stats", "--allow-open", "--assume-solid", "--no-solid-check", "-o"})
     EXPECT_NE(u.out.find(opt), std::string::npos) << opt << "\n" << describe(u);
 }
 

@@ -30,6 +30,20 @@ inline BooleanResult run_checked(std::span<const Mesh> ops, Operation op, const 
     }
   }
   EXPECT_EQ(r.stats.output_polygons, r.mesh.face_count());
+  // Operands proven solid take the shortcuts; the general path must agree.
+  if (opt.detect_solid && r.stats.solid_operands > 0) {
+    BooleanOptions general = opt;
+    general.detect_solid = false;
+    general.all_solid = false;
+    general.solid.clear();
+    const BooleanResult g = boolean(ops, op, general);
+    if (g.stats.solid_operands != r.stats.solid_operands) {
+      EXPECT_TRUE(close_rel(volume(r.mesh), volume(g.mesh), 1e-9, 1e-12))
+          << "solid proof changed the volume: " << volume(r.mesh) << " vs general " << volume(g.mesh);
+      EXPECT_TRUE(close_rel(surface_area(r.mesh), surface_area(g.mesh), 1e-9, 1e-12))
+          << "solid proof changed the area: " << surface_area(r.mesh) << " vs general " << surface_area(g.mesh);
+    }
+  }
   return r;
 }
 inline BooleanResult run_checked(std::initializer_list<Mesh> ops, Operation op, const BooleanOptions& opt = {},

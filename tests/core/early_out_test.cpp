@@ -19,8 +19,10 @@ TEST(EarlyOut, SolidFlagGivesSameVolumesAsGeneralPath) {
   const std::vector<Mesh> ops = curved_pair();
   BooleanOptions solid;
   solid.all_solid = true;
+  BooleanOptions no_proof;  // the general path: no promise, no solid proof
+  no_proof.detect_solid = false;
   for (Op op : {Op::Union, Op::Intersection, Op::Difference, Op::Xor}) {
-    const BooleanResult general = run_checked(ops, op);
+    const BooleanResult general = run_checked(ops, op, no_proof);
     const BooleanResult fast = run_checked(ops, op, solid);
     EXPECT_TRUE(close_rel(volume(general.mesh), volume(fast.mesh), 1e-12)) << int(op);
     EXPECT_TRUE(close_rel(surface_area(general.mesh), surface_area(fast.mesh), 1e-12)) << int(op);
@@ -66,15 +68,16 @@ TEST(EarlyOut, NaryMillingSubtractionPrunesAndStaysExact) {
 
 TEST(EarlyOut, ThreadCountsGiveBitIdenticalResults) {
   const std::vector<Mesh> ops = curved_pair();
-  for (bool all_solid : {false, true}) {
+  for (int mode : {0, 1, 2}) {  // general path, solid proof (default), solid promise
     BooleanOptions o;
-    o.all_solid = all_solid;
+    o.detect_solid = mode == 1;
+    o.all_solid = mode == 2;
     o.threads = 1;
     const BooleanResult one = boolean(ops, Op::Union, o);
     for (int t : {2, 8}) {
       o.threads = t;
       const BooleanResult many = boolean(ops, Op::Union, o);
-      EXPECT_EQ(one.mesh, many.mesh) << t << " threads, solid " << all_solid;
+      EXPECT_EQ(one.mesh, many.mesh) << t << " threads, mode " << mode;
       ASSERT_EQ(one.provenance.size(), many.provenance.size());
       for (std::size_t i = 0; i < one.provenance.size(); ++i) {
         EXPECT_EQ(one.provenance[i].operand, many.provenance[i].operand);

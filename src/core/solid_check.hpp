@@ -1,0 +1,43 @@
+#pragma once
+// Exact proof that an operand is *solid* in the sense the core's shortcuts
+// need (paper Section 4.5.1, NSI + NNC; BooleanOptions::solid): its winding
+// number is 0 in front of and 1 behind every one of its triangles.
+//
+// The proof has three exact steps on the quantized, non-degenerate triangles:
+//  1. no self-intersection: any two triangles meet in nothing, a shared
+//     vertex, or a shared edge (integer orientation predicates, <= 84 bits);
+//  2. components: triangles joined across manifold edges (used once in each
+//     direction). By step 1 nothing else comes near such an edge, so the
+//     winding number in front of a component is one constant;
+//  3. one classification trace per component gives that constant: it must be
+//     0 (and 1 behind).
+// Every doubt (touching, T-junctions, non-manifold edges, too many
+// components for the trace budget, a failed trace) answers "not solid": the
+// caller then takes the general path, which is always correct.
+#include <array>
+#include <span>
+
+#include "core/solve.hpp"
+
+namespace ember::core {
+
+enum class SolidVerdict {
+  Solid,
+  SelfIntersecting,   ///< two triangles meet beyond a shared vertex or edge (or touch)
+  WrongWinding,       ///< some component has winding != 0 in front (nested, inverted)
+  TooComplex,         ///< beyond the proof's work budget (many components, piles of slivers): not decided
+  Unclassified,       ///< no valid trace path (not decided)
+};
+
+/// Decides whether `operand` is solid. `root` is the whole problem (its soup
+/// holds every operand's polygons, polygon i has id i; its reference point is
+/// outside everything); corners[i] are polygon i's grid vertices.
+SolidVerdict check_solid(const Subproblem& root, std::span<const std::array<IntPoint, 3>> corners,
+                         std::uint32_t operand);
+
+/// Step 1 alone, for one pair (exposed for tests): true if the two
+/// non-degenerate triangles meet anywhere except in shared vertices or a
+/// shared edge (vertices are shared when their positions are equal).
+bool triangles_meet_improperly(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b);
+
+}  // namespace ember::core

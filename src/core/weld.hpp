@@ -1,0 +1,58 @@
+#pragma once
+// Vertex ids for grid triangles: equal positions get equal ids (first
+// occurrence order), for edge matching (closedness, manifold components).
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "ember/geometry/plane.hpp"
+
+namespace ember::core {
+
+struct WeldedTriangles {
+  std::vector<std::array<std::uint32_t, 3>> ids;  ///< per triangle, its corners' vertex ids
+  std::size_t vertex_count = 0;
+};
+
+WeldedTriangles weld(std::span<const std::array<IntPoint, 3>> triangles);
+
+/// One use of an undirected edge {lo, hi} by a triangle's directed edge.
+struct EdgeUse {
+  std::uint32_t hi;   ///< the edge's higher vertex id
+  std::uint32_t tri;  ///< the triangle using it
+  bool forward;       ///< the triangle runs lo -> hi
+  friend bool operator<(const EdgeUse& x, const EdgeUse& y) { return x.hi != y.hi ? x.hi < y.hi : x.tri < y.tri; }
+};
+
+/// Calls f(uses) once per undirected edge with the span of its uses, ordered
+/// by triangle. Edges of collapsed corners (equal ids) are skipped. Linear:
+/// a counting sort by the lower id, then tiny per-vertex sorts.
+template <typename F>
+void for_each_edge(const WeldedTriangles& welded, F&& f) {
+  std::vector<std::uint32_t> start(welded.vertex_count + 1, 0);
+  for (const auto& v : welded.ids)
+    for (int e = 0; e < 3; ++e)
+      if (v[e] != v[(e + 1) % 3]) ++start[std::min(v[e], v[(e + 1) % 3]) + 1];
+  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  std::vector<EdgeUse> uses(start.back());
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::uint32_t t = 0; t < welded.ids.size(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t a = welded.ids[t][e], b = welded.ids[t][(e + 1) % 3];
+      if (a != b) uses[fill[std::min(a, b)]++] = {std::max(a, b), t, a < b};
+    }
+  for (std::size_t v = 0; v + 1 < start.size(); ++v) {
+    const auto first = uses.begin() + start[v], last = uses.begin() + start[v + 1];
+    std::sort(first, last);
+    for (auto it = first; it != last;) {
+      auto jt = it;
+      while (jt != last && jt->hi == it->hi) ++jt;
+      f(std::span<const EdgeUse>(&*it, static_cast<std::size_t>(jt - it)));
+      it = jt;
+    }
+  }
+}
+
+}  // namespace ember::core

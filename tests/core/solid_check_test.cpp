@@ -1,0 +1,194 @@
+// The exact solid proof (src/core/solid_check.hpp): the pairwise contact
+// predicate on hand-made configurations and random small-grid triangles, and
+// the verdict on procedural shapes whose solidity is known by construction.
+#include <gtest/gtest.h>
+
+#include <gmpxx.h>
+
+#include <functional>
+#include <random>
+
+#include "core/solid_check.hpp"
+#include "core_test_util.hpp"
+
+namespace ember::test {
+namespace {
+
+using Tri = std::array<IntPoint, 3>;
+using core::triangles_meet_improperly;
+
+/// The predicate must not depend on vertex order, orientation or argument order.
+bool meet(const Tri& a, const Tri& b) {
+  const bool r = triangles_meet_improperly(a, b);
+  const Tri ar{a[1], a[2], a[0]}, br{b[2], b[0], b[1]}, af{a[0], a[2], a[1]}, bf{b[1], b[0], b[2]};
+  EXPECT_EQ(triangles_meet_improperly(b, a), r);
+  EXPECT_EQ(triangles_meet_improperly(ar, br), r);
+  EXPECT_EQ(triangles_meet_improperly(af, b), r);
+  EXPECT_EQ(triangles_meet_improperly(a, bf), r);
+  return r;
+}
+
+TEST(TriangleContact, NoSharedVertex) {
+  const Tri a{{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}}};
+  EXPECT_FALSE(meet(a, {{{0, 0, 1}, {4, 0, 1}, {0, 4, 1}}}));     // parallel planes
+  EXPECT_TRUE(meet(a, {{{1, 1, -1}, {1, 1, 1}, {2, 0, 5}}}));      // pierces the interior
+  EXPECT_FALSE(meet(a, {{{3, 3, -1}, {3, 3, 1}, {4, 4, 0}}}));     // crosses the plane outside a
+  EXPECT_TRUE(meet(a, {{{1, 1, 0}, {1, 1, 3}, {2, 2, 3}}}));       // a vertex touches a's interior
+  EXPECT_TRUE(meet(a, {{{2, 0, 0}, {2, -1, 3}, {2, 1, 3}}}));      // a vertex touches a's edge
+  EXPECT_TRUE(meet(a, {{{1, 1, 0}, {5, 1, 0}, {1, 5, 0}}}));       // coplanar overlap
+  EXPECT_FALSE(meet(a, {{{3, 3, 0}, {6, 3, 0}, {3, 6, 0}}}));      // coplanar, disjoint
+  EXPECT_TRUE(meet(a, {{{2, 2, 0}, {6, 2, 0}, {2, 6, 0}}}));       // coplanar, touching at a point
+  EXPECT_TRUE(meet(a, {{{-1, 2, -1}, {-1, 2, 1}, {3, 0, 0}}}));    // an edge of b crosses a's edge region
+}
+
+TEST(TriangleContact, SharedEdge) {
+  const Tri a{{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}}};
+  EXPECT_FALSE(meet(a, {{{4, 0, 0}, {0, 0, 0}, {1, -3, 2}}}));  // fold
+  EXPECT_FALSE(meet(a, {{{4, 0, 0}, {0, 0, 0}, {1, -3, 0}}}));  // flat, opposite sides
+  EXPECT_TRUE(meet(a, {{{4, 0, 0}, {0, 0, 0}, {1, 1, 0}}}));    // flat, folded onto a
+  EXPECT_TRUE(meet(a, {{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}}}));    // the same triangle
+  EXPECT_TRUE(meet(a, {{{4, 0, 0}, {0, 0, 0}, {0, 4, 0}}}));    // the same triangle, reversed
+}
+
+TEST(TriangleContact, SharedVertex) {
+  const Tri a{{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}}};
+  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {-1, -1, 2}, {-2, 1, 3}}}));  // apart, not coplanar
+  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {1, 1, 2}, {2, 1, 3}}}));     // above a, touching only at v
+  EXPECT_TRUE(meet(a, {{{0, 0, 0}, {1, 1, 2}, {2, 1, -3}}}));     // crosses a's plane inside a
+  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {-1, -1, 2}, {-1, -1, -2}}})); // crosses a's plane outside a
+  EXPECT_TRUE(meet(a, {{{0, 0, 0}, {2, 2, 0}, {1, 1, 3}}}));      // an edge of b lies in a
+  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {-3, 0, 0}, {0, -3, 0}}}));   // coplanar, opposite wedge
+  EXPECT_TRUE(meet(a, {{{0, 0, 0}, {1, 1, 0}, {-1, 3, 0}}}));     // coplanar, wedges overlap
+  EXPECT_TRUE(meet(a, {{{0, 0, 0}, {0, 2, 0}, {-3, 1, 0}}}));     // coplanar, touching along an edge ray
+  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {0, 4, 0}, {-3, 1, 0}}}));    // (shares an edge: flat, opposite sides)
+}
+
+/// Independent oracle in exact rationals: computes A ∩ B as a convex set
+/// (the part of B in A's plane, clipped by A's edge half-planes) and asks
+/// whether it has a vertex that is neither a shared vertex nor on a shared edge.
+using Q3 = std::array<mpq_class, 3>;
+Q3 q3(const IntPoint& p) { return {mpq_class(p.x), mpq_class(p.y), mpq_class(p.z)}; }
+Q3 sub(const Q3& a, const Q3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Q3 crs(const Q3& a, const Q3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+mpq_class dt(const Q3& a, const Q3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Q3 lerp(const Q3& a, const Q3& b, const mpq_class& t) {
+  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+}
+
+/// Keeps the part of the convex polygon `poly` (possibly degenerate) where f >= 0.
+std::vector<Q3> clip_keep(const std::vector<Q3>& poly, const std::function<mpq_class(const Q3&)>& f) {
+  std::vector<Q3> out;
+  const std::size_t n = poly.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Q3 &p = poly[i], &q = poly[(i + 1) % n];
+    const mpq_class fp = f(p), fq = f(q);
+    if (fp >= 0) out.push_back(p);
+    if ((fp > 0 && fq < 0) || (fp < 0 && fq > 0)) out.push_back(lerp(p, q, fp / (fp - fq)));
+  }
+  return out;
+}
+
+bool oracle_meet(const Tri& a, const Tri& b) {
+  const Q3 A[3] = {q3(a[0]), q3(a[1]), q3(a[2])};
+  const Q3 nA = crs(sub(A[1], A[0]), sub(A[2], A[0]));
+  std::vector<Q3> set{q3(b[0]), q3(b[1]), q3(b[2])};
+  const auto plane = [&](const Q3& x) { return dt(nA, sub(x, A[0])); };
+  set = clip_keep(set, plane);
+  set = clip_keep(set, [&](const Q3& x) { return -plane(x); });  // B in A's plane
+  for (int i = 0; i < 3 && !set.empty(); ++i) {
+    const Q3 inward = crs(nA, sub(A[(i + 1) % 3], A[i]));
+    set = clip_keep(set, [&](const Q3& x) { return dt(inward, sub(x, A[i])); });
+  }
+  std::vector<Q3> shared;
+  for (const IntPoint& p : a)
+    for (const IntPoint& q : b)
+      if (p == q) shared.push_back(q3(p));
+  if (shared.size() == 3) return !set.empty();
+  for (const Q3& x : set) {
+    bool allowed = false;
+    for (const Q3& s : shared) allowed |= x == s;
+    if (shared.size() == 2) {  // on the shared segment?
+      const Q3 d = sub(shared[1], shared[0]), e = sub(x, shared[0]);
+      const Q3 c = crs(d, e);
+      allowed |= c[0] == 0 && c[1] == 0 && c[2] == 0 && dt(d, e) >= 0 && dt(d, e) <= dt(d, d);
+    }
+    if (!allowed) return true;
+  }
+  return false;
+}
+
+TEST(TriangleContact, RandomSmallGridTrianglesMatchRationalOracle) {
+  // On a 4x4x4 grid, degeneracies (shared vertices and edges, coplanarity,
+  // touching) are frequent. meet() also checks argument and vertex symmetries.
+  std::mt19937 rng(42);
+  std::uniform_int_distribution<int> c(0, 3);
+  const auto random_point = [&] { return IntPoint{c(rng), c(rng), c(rng)}; };
+  const auto degenerate = [](const Tri& t) {
+    const std::int64_t ux = t[1].x - t[0].x, uy = t[1].y - t[0].y, uz = t[1].z - t[0].z;
+    const std::int64_t vx = t[2].x - t[0].x, vy = t[2].y - t[0].y, vz = t[2].z - t[0].z;
+    return uy * vz - uz * vy == 0 && uz * vx - ux * vz == 0 && ux * vy - uy * vx == 0;
+  };
+  int tested = 0, met = 0, shared_vertex = 0, mismatches = 0;
+  while (tested < 20000) {
+    const Tri a{{random_point(), random_point(), random_point()}};
+    Tri b{{random_point(), random_point(), random_point()}};
+    if (tested % 3 == 0) b[0] = a[tested % 2];  // force shared vertices often
+    if (degenerate(a) || degenerate(b)) continue;
+    ++tested;
+    const bool m = meet(a, b);
+    met += m;
+    shared_vertex += a[0] == b[0] || a[1] == b[0] || a[2] == b[0];
+    if (m != oracle_meet(a, b)) ++mismatches;
+  }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(met, 1000);
+  EXPECT_LT(met, tested - 1000);
+  EXPECT_GT(shared_vertex, 3000);
+}
+
+/// The Boolean's verdict through its statistics.
+std::size_t solid_operands(std::vector<Mesh> ops) {
+  ops = snapped(std::move(ops));
+  return run_checked(ops, Operation::Union).stats.solid_operands;
+}
+
+TEST(SolidProof, ClosedOutwardShapesAreSolid) {
+  EXPECT_EQ(solid_operands({icosphere({0, 0, 0}, 1.0, 3), torus({0.5, 0, 0}, 1.0, 0.3, 32, 12)}), 2u);
+  EXPECT_EQ(solid_operands({tessellated_box({0, 0, 0}, {1, 1, 1}, 4), box({0.5, 0.5, 0.5}, {2, 2, 2})}), 2u);
+  // Several disjoint components, and a hollow ball (inner shell inverted).
+  const Mesh two = merge({icosphere({0, 0, 0}, 1.0, 2), icosphere({3, 0, 0}, 1.0, 2)});
+  const Mesh hollow = merge({icosphere({0, 0, 0}, 1.0, 2), reverse_orientation(icosphere({0, 0, 0}, 0.5, 2))});
+  EXPECT_EQ(solid_operands({two, hollow}), 2u);
+}
+
+TEST(SolidProof, RejectsWhatTheShortcutsCannotHandle) {
+  const Mesh ball = icosphere({0, 0, 0}, 1.0, 2);
+  const Mesh other = box({-2, -2, -2}, {-1.5, -1.5, -1.5});
+  // Two overlapping balls in one mesh: self-intersecting.
+  EXPECT_EQ(solid_operands({merge({ball, icosphere({0.5, 0, 0}, 1.0, 2)}), other}), 1u);
+  // Nested, same orientation: winding number 2 inside the inner ball.
+  EXPECT_EQ(solid_operands({merge({ball, icosphere({0, 0, 0}, 0.5, 2)}), other}), 1u);
+  // Inside out: winding number -1.
+  EXPECT_EQ(solid_operands({reverse_orientation(ball), other}), 1u);
+  // Two boxes sharing a face: doubled internal faces.
+  EXPECT_EQ(solid_operands({merge({box({0, 0, 0}, {1, 1, 1}), box({1, 0, 0}, {2, 1, 1})}), other}), 1u);
+}
+
+TEST(SolidProof, ProofAndPromiseGiveTheSameResult) {
+  const std::vector<Mesh> ops =
+      snapped({icosphere({0, 0, 0}, 1.0, 3), rotate(torus({0.4, 0.1, 0.0}, 0.9, 0.3, 40, 16), random_rotation(9))});
+  BooleanOptions promise;
+  promise.all_solid = true;
+  promise.detect_solid = false;
+  for (Operation op : {Operation::Union, Operation::Intersection, Operation::Difference}) {
+    const BooleanResult proven = run_checked(ops, op);
+    const BooleanResult promised = run_checked(ops, op, promise);
+    EXPECT_EQ(proven.stats.solid_operands, 2u);
+    EXPECT_EQ(proven.mesh, promised.mesh) << int(op);  // same flags, same computation
+  }
+}
+
+}  // namespace
+}  // namespace ember::test
