@@ -296,9 +296,11 @@ def main() -> int:
     ap.add_argument("--scaling-angle", type=float, default=1.0, help="degrees of the self-rotation")
     ap.add_argument("--scaling-ops", default="union", help="ops of the scaling series (comma separated)")
     ap.add_argument("--tools", default="ember,cgal,manifold")
-    ap.add_argument("--ember-modes", default="general,solid",
-                    help="ember runs: 'general' (no input assumptions) and/or 'solid' (--assume-solid: inputs "
-                         "closed, outward, free of self-intersections, as CGAL and Manifold also require)")
+    ap.add_argument("--ember-modes", default="general,solid,nocheck",
+                    help="ember runs: 'general' (defaults: no input assumptions, inputs proven solid when they "
+                         "are), 'solid' (--assume-solid: inputs promised closed, outward, free of "
+                         "self-intersections, as CGAL and Manifold also require, no proof) and/or 'nocheck' "
+                         "(--no-solid-check: the general path for every input)")
     ap.add_argument("--replot", action="store_true",
                     help="only redraw OUT/time_vs_size.png from OUT/results.csv (e.g. after an interrupted run)")
     ap.add_argument("--keep-meshes", action="store_true", help="keep the prepared binary meshes in OUT/meshes")
@@ -350,7 +352,8 @@ def main() -> int:
     rows = []
     modes = [m for m in args.ember_modes.split(",") if m]
     ember_cols = [f"ember_t{t}" for t in args.threads if "general" in modes] + \
-                 [f"ember_solid_t{t}" for t in args.threads if "solid" in modes]
+                 [f"ember_solid_t{t}" for t in args.threads if "solid" in modes] + \
+                 [f"ember_nocheck_t{t}" for t in args.threads if "nocheck" in modes]
     tool_names = [t for t in ember_cols if "ember" in tools] + [t for t in ("cgal", "manifold") if t in tools]
     info = machine_info()
     timed_out: dict[str, str] = {}
@@ -388,6 +391,9 @@ def main() -> int:
                 if "solid" in modes:
                     commands[f"ember_solid_t{t}"] = ([str(ember_bench), "run", str(fa), str(fb), "--threads", str(t),
                                                       "--solid"], None)
+                if "nocheck" in modes:
+                    commands[f"ember_nocheck_t{t}"] = ([str(ember_bench), "run", str(fa), str(fb), "--threads",
+                                                        str(t), "--no-detect"], None)
         if "cgal" in tools:
             commands["cgal"] = ([str(cgal_runner), str(fa), str(fb)], None)
         if "manifold" in tools:
@@ -539,9 +545,11 @@ def write_summary(path: Path, rows: list[dict], tools: list[str], args, info: di
              "I/O excluded. **CGAL's time includes building both Surface_mesh from the arrays and copying the "
              "result back**; Manifold's includes building Mesh/Manifold objects and getMesh(); ember's includes "
              "building ember::Mesh from the arrays.")
-    L.append("- ember_t*: no assumptions about the inputs (any PWN mesh); ember_solid_t*: `--assume-solid` "
-             "(inputs promised closed, outward, free of self-intersections: what CGAL and Manifold require), "
-             "which enables the early-outs of the paper's Fig. 11.")
+    L.append("- ember_t*: defaults, no assumptions about the inputs (any PWN mesh); each closed input is proven "
+             "solid or not exactly (the proof's time is included) and solid ones take the early-outs of the "
+             "paper's Fig. 11. ember_solid_t*: `--assume-solid` (inputs promised closed, outward, free of "
+             "self-intersections: what CGAL and Manifold require; no proof). ember_nocheck_t*: "
+             "`--no-solid-check` (the general path for every input).")
     L.append("- peak RSS: ru_maxrss of each runner process (one process per case and tool, all ops); node's "
              "includes the V8/WASM runtime (~50 MiB).\n")
 
