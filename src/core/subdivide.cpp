@@ -297,7 +297,16 @@ void solve_into(Subproblem&& pb, const SolveContext& ctx, OutputChunks& chunks) 
     return;
   }
   std::int64_t position = 0;
-  const int axis = pb.soup.size() > ctx.leaf_size ? choose_split(pb, summary, position) : -1;
+  int axis = pb.soup.size() > ctx.leaf_size ? choose_split(pb, summary, position) : -1;
+  if (axis >= 0) {
+    // A split that leaves most polygons in both children (a pile that no
+    // plane separates) multiplies pieces without progress: solve the pile as
+    // one leaf instead.
+    std::size_t straddling = 0;
+    for (const SoupPolygon& p : pb.soup)
+      straddling += p.lo[axis] < static_cast<double>(position) && p.hi[axis] > static_cast<double>(position);
+    if (4 * straddling > 3 * pb.soup.size()) axis = -1;
+  }
   if (axis < 0) {
     solve_leaf(pb, ctx, out);
     if (!out.empty()) chunks.push_back(std::move(out));

@@ -168,8 +168,9 @@ TEST(RealMeshes, OverlappingPairsInclusionExclusionAndMembership) {
 
 TEST(RealMeshes, SelfIntersectingMeshesAreNeverProvenSolid) {
   // Closed meshes that the manifest lists with self-intersections: the proof
-  // must reject every one, and the Boolean (general path) must still agree
-  // with itself under run_checked's invariants.
+  // must reject every one, and the Boolean (general path) must be right at
+  // random points. Includes Generic_Twin_7081.1.t0_left.obj (12 overlapping
+  // parts), on which the subdivision used to fragment without end.
   const fs::path dir = EMBER_SHARED_DATA_DIR;
   if (!fs::is_directory(dir)) GTEST_SKIP() << "../shared/data not found (" << dir << "): real-mesh tests skipped";
 #ifndef EMBER_HAVE_MESH_IO
@@ -179,10 +180,7 @@ TEST(RealMeshes, SelfIntersectingMeshesAreNeverProvenSolid) {
   for (const auto& row : manifest_rows(dir)) {
     if (row.count("self_intersections") == 0 || row.at("self_intersections") != "yes" || row.at("closed") != "yes")
       continue;
-    // Small ones only: the general path is slow on heavily self-overlapping
-    // meshes (Generic_Twin_7081.1.t0_left.obj, 19.7k triangles in 12
-    // overlapping parts, needs minutes and > 8 GB: an open problem).
-    if (std::stoull(row.at("triangles")) > 5000 || tested >= 25) continue;
+    if (std::stoull(row.at("triangles")) > kMaxTriangles || tested >= 40) continue;
     SCOPED_TRACE(row.at("path"));
     Mesh m;
     try {
@@ -197,6 +195,9 @@ TEST(RealMeshes, SelfIntersectingMeshesAreNeverProvenSolid) {
     opt.allow_open = true;  // "closed" in the manifest is on float positions
     const BooleanResult r = run_checked(ops, Op::Union, opt);
     EXPECT_LE(r.stats.solid_operands, 1u) << "a self-intersecting mesh was proven solid";
+    // The general path's answer, against generalized winding numbers of the inputs.
+    const MembershipReport mr = membership_check(ops, Op::Union, r.mesh, 50, 77 + tested);
+    EXPECT_EQ(mr.mismatches, 0) << mr.first;
     ++tested;
   }
   std::cout << "[ solid proof ] " << tested << " self-intersecting meshes rejected\n";
