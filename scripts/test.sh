@@ -3,8 +3,8 @@
 # again with AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/) and
 # run the suite once more: memory errors and undefined behaviour fail the run.
 #
-#   scripts/test.sh                  # both passes (what .ci/run does; ~8 min on 2 cores)
-#   scripts/test.sh --no-sanitizers  # the Release pass only (~2 min)
+#   scripts/test.sh                  # both passes (what .ci/run does; ~12 min on 2 cores)
+#   scripts/test.sh --no-sanitizers  # the Release pass only (~3 min)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 sanitizers=1
