@@ -54,9 +54,9 @@ void validate(const Mesh& m, std::size_t index) {
 /// Counts edges whose uses in one direction are not matched by uses in the
 /// other (on the quantized positions, degenerate triangles included, so the
 /// test describes the surface the core actually sees). Zero means closed.
-std::size_t count_open_edges(const std::vector<std::array<IntPoint, 3>>& triangles) {
+std::size_t count_open_edges(const core::WeldedTriangles& welded) {
   std::size_t open = 0;
-  core::for_each_edge(core::weld(triangles), [&](std::span<const core::EdgeUse> uses) {
+  core::for_each_edge(welded, [&](std::span<const core::EdgeUse> uses) {
     int balance = 0;
     for (const core::EdgeUse& u : uses) balance += u.forward ? 1 : -1;
     open += balance != 0;
@@ -203,6 +203,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   result.stats.input_triangles = triangles.size();
 
   std::vector<std::size_t> open(operands.size(), 0);
+  std::vector<std::array<std::uint32_t, 3>> vertex_ids(triangles.size());  // welded per operand
   std::vector<std::optional<core::SoupPolygon>> built(triangles.size());
   arena.execute([&] {
     // The closedness check (hashing, per operand) runs beside the triangle
@@ -213,7 +214,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
         std::vector<std::array<IntPoint, 3>> corners;
         corners.reserve(operand_begin[o + 1] - operand_begin[o]);
         for (std::size_t i = operand_begin[o]; i < operand_begin[o + 1]; ++i) corners.push_back(triangles[i].p);
-        open[o] = count_open_edges(corners);
+        const core::WeldedTriangles welded = core::weld(corners);
+        open[o] = count_open_edges(welded);
+        std::copy(welded.ids.begin(), welded.ids.end(), vertex_ids.begin() + operand_begin[o]);
       });
     });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 512),
@@ -239,7 +242,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   // coplanar overlaps, independent of scheduling.
   core::Soup soup;
   std::vector<Source> sources;
-  std::vector<std::array<IntPoint, 3>> corners;  // by soup id, for the solid proof
+  core::GridTriangles grid;  // by soup id, for the solid proof
   soup.reserve(triangles.size());
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     if (!built[i]) {
@@ -248,10 +251,14 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     }
     built[i]->id = static_cast<std::uint32_t>(sources.size());
     sources.push_back(triangles[i].source);
-    if (options.detect_solid) corners.push_back(triangles[i].p);
+    if (options.detect_solid) {
+      grid.corners.push_back(triangles[i].p);
+      grid.vertex_ids.push_back(vertex_ids[i]);
+    }
     soup.push_back(std::move(*built[i]));
   }
   built = {};
+  vertex_ids = {};
 
   std::vector<core::OutputPolygon> polys;
   if (!soup.empty()) {
@@ -278,9 +285,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       for (std::size_t o = 0; o < operands.size(); ++o)
         if (!ctx.solid[o] && open[o] == 0)
           arena.execute([&] {
-            ctx.solid[o] = core::check_solid(root, corners, static_cast<std::uint32_t>(o)) == core::SolidVerdict::Solid;
+            ctx.solid[o] = core::check_solid(root, grid, static_cast<std::uint32_t>(o)) == core::SolidVerdict::Solid;
           });
-      corners = {};
+      grid = {};
     }
     for (const char s : ctx.solid) result.stats.solid_operands += s != 0;
     arena.execute([&] { polys = core::solve(std::move(root), ctx); });

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <atomic>
 #include <numeric>
-#include <unordered_map>
 
 #include "core/weld.hpp"
 
@@ -137,20 +136,24 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
 /// Components of the members joined across manifold edges (one use in each
 /// direction, on equal grid positions). Returns one representative (the
 /// first member in order) per component.
-std::vector<std::uint32_t> component_representatives(std::span<const std::array<IntPoint, 3>> corners,
+std::vector<std::uint32_t> component_representatives(const GridTriangles& grid,
                                                      const std::vector<std::uint32_t>& members) {
-  std::vector<std::array<IntPoint, 3>> tris;
-  tris.reserve(members.size());
-  for (const std::uint32_t m : members) tris.push_back(corners[m]);
-  std::vector<std::uint32_t> parent(tris.size());
+  WeldedTriangles welded;
+  welded.ids.reserve(members.size());
+  for (const std::uint32_t m : members) {
+    welded.ids.push_back(grid.vertex_ids[m]);
+    for (const std::uint32_t v : grid.vertex_ids[m]) welded.vertex_count = std::max<std::size_t>(welded.vertex_count, v + 1);
+  }
+  const std::size_t n = members.size();
+  std::vector<std::uint32_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0u);
-  for_each_edge(weld(tris), [&](std::span<const EdgeUse> uses) {
+  for_each_edge(welded, [&](std::span<const EdgeUse> uses) {
     if (uses.size() == 2 && uses[0].forward != uses[1].forward)
       parent[find(parent, uses[0].tri)] = find(parent, uses[1].tri);
   });
   std::vector<std::uint32_t> reps;
-  std::vector<char> seen(tris.size(), 0);
-  for (std::uint32_t t = 0; t < tris.size(); ++t) {
+  std::vector<char> seen(n, 0);
+  for (std::uint32_t t = 0; t < n; ++t) {
     const std::uint32_t r = find(parent, t);
     if (!seen[r]) {
       seen[r] = 1;
@@ -162,13 +165,12 @@ std::vector<std::uint32_t> component_representatives(std::span<const std::array<
 
 }  // namespace
 
-SolidVerdict check_solid(const Subproblem& root, std::span<const std::array<IntPoint, 3>> corners,
-                         std::uint32_t operand) {
+SolidVerdict check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand) {
   std::vector<std::uint32_t> members;
   for (const SoupPolygon& p : root.soup)
     if (p.operand == operand) members.push_back(p.id);
   if (members.empty()) return SolidVerdict::Solid;
-  switch (ContactSearch(corners, members).run()) {
+  switch (ContactSearch(grid.corners, members).run()) {
     case ContactSearch::Outcome::Found:
       return SolidVerdict::SelfIntersecting;
     case ContactSearch::Outcome::GaveUp:
@@ -176,7 +178,7 @@ SolidVerdict check_solid(const Subproblem& root, std::span<const std::array<IntP
     case ContactSearch::Outcome::None:
       break;
   }
-  const std::vector<std::uint32_t> reps = component_representatives(corners, members);
+  const std::vector<std::uint32_t> reps = component_representatives(grid, members);
   // Each trace scans the whole soup a few times: bound the total work.
   constexpr std::size_t kTraceBudget = std::size_t{1} << 25;
   if (reps.size() > 8 && reps.size() * root.soup.size() > kTraceBudget) return SolidVerdict::TooComplex;

@@ -29,11 +29,17 @@ enum class SolidVerdict {
   Unclassified,       ///< no valid trace path (not decided)
 };
 
+/// The grid triangles behind the soup's polygons, indexed by polygon id.
+struct GridTriangles {
+  std::vector<std::array<IntPoint, 3>> corners;
+  /// Welded vertex ids (weld.hpp): within one operand, equal ids iff equal positions.
+  std::vector<std::array<std::uint32_t, 3>> vertex_ids;
+};
+
 /// Decides whether `operand` is solid. `root` is the whole problem (its soup
 /// holds every operand's polygons, polygon i has id i; its reference point is
-/// outside everything); corners[i] are polygon i's grid vertices.
-SolidVerdict check_solid(const Subproblem& root, std::span<const std::array<IntPoint, 3>> corners,
-                         std::uint32_t operand);
+/// outside everything).
+SolidVerdict check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand);
 
 /// Step 1 alone, for one pair (exposed for tests): true if the two
 /// non-degenerate triangles meet anywhere except in shared vertices or a

@@ -51,10 +51,7 @@ AxisLine axis_line(const Dyadic& p, int axis) {
 }
 
 double approx_coord(const Dyadic& p, int axis) {
-  const __int128 n = p.num[axis];
-  const auto low = static_cast<std::int64_t>(n);  // usually enough: skips libgcc's __int128 conversion
-  const double v = static_cast<__int128>(low) == n ? static_cast<double>(low) : static_cast<double>(n);
-  return v / static_cast<double>(std::int64_t{1} << p.shift);  // exact power of two
+  return to_double(p.num[axis]) / static_cast<double>(std::int64_t{1} << p.shift);  // exact power of two
 }
 
 }  // namespace ember::core

@@ -29,6 +29,14 @@ constexpr int limbs_for(int bits) { return (bits + 1 + 63) / 64; }
 constexpr int max_int(int a, int b) { return a > b ? a : b; }
 }  // namespace detail
 
+/// Correctly rounded conversion. Most values fit 64 bits; converting those
+/// skips libgcc's __int128 routine (both conversions round correctly, so the
+/// result is the same).
+inline double to_double(i128 v) {
+  const auto low = static_cast<std::int64_t>(v);
+  return static_cast<i128>(low) == v ? static_cast<double>(low) : static_cast<double>(v);
+}
+
 template <int Bits>
 class Int;
 
@@ -162,11 +170,7 @@ class Int {
     if constexpr (limbs == 1) {
       return static_cast<double>(v_);
     } else if constexpr (limbs == 2) {
-      // Most values fit 64 bits; converting those skips libgcc's __int128
-      // routine. Both conversions round correctly, so the result is the same.
-      const auto low = static_cast<std::int64_t>(v_);
-      if (static_cast<__int128>(low) == v_) return static_cast<double>(low);
-      return static_cast<double>(v_);
+      return ember::to_double(v_);
     } else {
       const Int m = abs();
       double r = 0;
