@@ -12,7 +12,11 @@ namespace ember::core {
 namespace {
 
 using i128 = __int128;
-static_assert(kCoordLimit <= (std::int64_t{1} << 25), "the bit budget above assumes |x| <= 2^25");
+static_assert(kCoordLimit <= (std::int64_t{1} << 25), "the bit budget below assumes |x| <= 2^25");
+constexpr int kDiffBits = 26;  // |x - y| <= 2^26 for grid coordinates
+static_assert(2 * kDiffBits + 1 <= 62, "orient2d: two products < 2^52 each, difference < 2^53, fits int64");
+static_assert(3 * kDiffBits + 1 + 2 <= 126, "orient3d: minors < 2^53, three terms < 2^79 each, sum < 2^81");
+static_assert((3 * kDiffBits + 3) + kDiffBits + 1 <= 126, "chord |s| d: s < 2^81, d < 2^26, two terms < 2^108");
 
 int sign(i128 v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 
