@@ -3,7 +3,8 @@
 //
 //   ember::Mesh a = ..., b = ...;
 //   ember::BooleanResult r = ember::boolean({a, b}, ember::Operation::Union);
-//   // r.mesh: convex polygons, consistently oriented (outward normals)
+//   // r.mesh: an indexed triangle mesh, outward oriented, closed when the
+//   // exact result is (BooleanOptions::output selects raw polygons instead)
 //
 // All operands are quantized together onto one integer grid (|x| <= 2^25, a
 // power-of-two scale so integer and dyadic inputs stay exact); the Boolean is
@@ -63,6 +64,12 @@ struct BooleanOptions {
   /// Costs a fraction of the Boolean it speeds up; turn off only for inputs
   /// known to fail it.
   bool detect_solid = true;
+  /// Output form. Triangles (default): an indexed triangle mesh, watertight
+  /// wherever the exact result is closed (exact points welded, T-junctions
+  /// resolved, coplanar pieces merged and re-triangulated exactly).
+  /// Polygons: the core's raw convex pieces, as the paper emits them
+  /// (T-junctions, one polygon per BSP piece).
+  enum class Output { Triangles, Polygons } output = Output::Triangles;
 };
 
 /// Where an output polygon came from.
@@ -77,12 +84,22 @@ struct BooleanStats {
   std::size_t output_polygons = 0;
   std::size_t dropped_slivers = 0;  ///< exact output slivers whose rounded vertices have zero area
   std::size_t solid_operands = 0;  ///< operands treated as solid (promised or proven)
+  std::size_t output_vertices = 0;
+  /// Mesh stage (Output::Triangles): vertices inserted into edges they lay
+  /// on, boundary vertices removed as merely collinear, merged regions, and
+  /// regions that had to be triangulated piece by piece (may leave T-junctions).
+  std::size_t tjunctions_resolved = 0, collinear_removed = 0, regions = 0, fallback_regions = 0;
+  /// Output triangles whose rounded (double) corners have zero area.
+  std::size_t rounded_degenerate = 0;
   double time_ms = 0;  ///< quantization + core + export
+  /// Phases of time_ms: setup (validation, quantization, triangles, closedness),
+  /// solid proof, the exact core, and output (mesh stage or polygon export).
+  double setup_ms = 0, proof_ms = 0, solve_ms = 0, output_ms = 0;
   int threads = 1;
 };
 
 struct BooleanResult {
-  Mesh mesh;                           ///< convex polygons; T-junctions possible
+  Mesh mesh;                           ///< triangles (default) or convex polygons (Output::Polygons)
   std::vector<Provenance> provenance;  ///< one per face of mesh
   BooleanStats stats;
   std::vector<std::string> warnings;

@@ -64,9 +64,16 @@ void write_atomically(const ember::Mesh& mesh, const fs::path& out) {
 void print_stats(const ember::BooleanResult& r, const char* op) {
   std::fprintf(stderr,
                "{\"operation\": \"%s\", \"input_triangles\": %zu, \"dropped_degenerate\": %zu, "
-               "\"output_polygons\": %zu, \"solid_operands\": %zu, \"time_ms\": %.3f, \"threads\": %d}\n",
+               "\"output_polygons\": %zu, \"output_vertices\": %zu, \"solid_operands\": %zu, "
+               "\"tjunctions_resolved\": %zu, \"collinear_removed\": %zu, \"regions\": %zu, "
+               "\"fallback_regions\": %zu, \"rounded_degenerate\": %zu, \"time_ms\": %.3f, "
+               "\"phases_ms\": {\"setup\": %.3f, \"proof\": %.3f, \"solve\": %.3f, \"output\": %.3f}, "
+               "\"threads\": %d}\n",
                op, r.stats.input_triangles, r.stats.dropped_degenerate, r.stats.output_polygons,
-               r.stats.solid_operands, r.stats.time_ms, r.stats.threads);
+               r.stats.output_vertices, r.stats.solid_operands, r.stats.tjunctions_resolved,
+               r.stats.collinear_removed, r.stats.regions, r.stats.fallback_regions, r.stats.rounded_degenerate,
+               r.stats.time_ms, r.stats.setup_ms, r.stats.proof_ms, r.stats.solve_ms, r.stats.output_ms,
+               r.stats.threads);
 }
 
 /// The library names inputs "operand i"; the user knows them by file name.
@@ -90,6 +97,7 @@ struct BooleanArgs {
   bool allow_open = false;
   bool assume_solid = false;
   bool no_solid_check = false;
+  bool polygons = false;
 };
 
 int run_boolean(ember::Operation op, const BooleanArgs& a) {
@@ -98,6 +106,7 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
   options.allow_open = a.allow_open;
   options.all_solid = a.assume_solid;
   options.detect_solid = !a.no_solid_check;
+  if (a.polygons) options.output = ember::BooleanOptions::Output::Polygons;
   if (a.min_k > 0) {  // main() allows --min-k with union only
     op = ember::Operation::AtLeastK;
     options.min_k = a.min_k;
@@ -175,6 +184,9 @@ int main(int argc, char** argv) {
     sub->add_flag("--no-solid-check", args.no_solid_check,
                   "Do not try to prove inputs solid (by default each closed input is checked exactly and, "
                   "if solid, takes the fast path); saves the check's time on inputs known to fail it");
+    sub->add_flag("--polygons", args.polygons,
+                  "Write the exact core's raw convex pieces (T-junctions, as in the paper) instead of the "
+                  "default watertight triangle mesh");
     subs.emplace_back(sub, c.op);
   }
   std::string demo_dir = "ember-demo";

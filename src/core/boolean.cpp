@@ -17,6 +17,7 @@
 #include <unordered_map>
 
 #include "core/indicator.hpp"
+#include "core/mesh/mesh_output.hpp"
 #include "core/solve.hpp"
 #include "core/solid_check.hpp"
 #include "core/weld.hpp"
@@ -26,6 +27,10 @@
 namespace ember {
 
 namespace {
+
+double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
 
 std::string operand_name(std::size_t i) { return "operand " + std::to_string(i); }
 
@@ -261,6 +266,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   vertex_ids = {};
 
   std::vector<core::OutputPolygon> polys;
+  const auto setup_done = std::chrono::steady_clock::now();
+  result.stats.setup_ms = ms_between(start, setup_done);
+  auto proved = setup_done;
   if (!soup.empty()) {
     core::Subproblem root;
     for (int a = 0; a < 3; ++a) {
@@ -290,12 +298,39 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       grid = {};
     }
     for (const char s : ctx.solid) result.stats.solid_operands += s != 0;
+    proved = std::chrono::steady_clock::now();
+    result.stats.proof_ms = ms_between(setup_done, proved);
     arena.execute([&] { polys = core::solve(std::move(root), ctx); });
   }
-  arena.execute([&] { result.mesh = export_mesh(polys, q, sources, result.provenance, result.stats.dropped_slivers); });
+  const auto solved = std::chrono::steady_clock::now();
+  result.stats.solve_ms = ms_between(proved, solved);
+  if (options.output == BooleanOptions::Output::Polygons) {
+    arena.execute([&] { result.mesh = export_mesh(polys, q, sources, result.provenance, result.stats.dropped_slivers); });
+  } else {
+    std::vector<Provenance> by_id(sources.size());
+    for (std::size_t i = 0; i < sources.size(); ++i) by_id[i] = {sources[i].operand, sources[i].face};
+    core::MeshOutput m;
+    arena.execute([&] { m = core::build_triangle_mesh(polys, q, by_id); });
+    result.mesh = std::move(m.mesh);
+    result.provenance = std::move(m.provenance);
+    result.stats.tjunctions_resolved = m.stats.tjunctions;
+    result.stats.collinear_removed = m.stats.collinear_removed;
+    result.stats.regions = m.stats.regions;
+    result.stats.fallback_regions = m.stats.fallback_regions;
+    result.stats.rounded_degenerate = m.stats.rounded_degenerate;
+    if (m.stats.fallback_regions)
+      result.warnings.push_back(std::to_string(m.stats.fallback_regions) +
+                                " planar regions could not be merged and were triangulated piece by piece; the mesh "
+                                "may have T-junctions there");
+    if (m.stats.rounded_degenerate)
+      result.warnings.push_back(std::to_string(m.stats.rounded_degenerate) +
+                                " output triangles have zero area after rounding to double (exact result is fine)");
+  }
   result.stats.output_polygons = result.mesh.face_count();
-  result.stats.time_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.stats.output_vertices = result.mesh.vertices.size();
+  const auto end = std::chrono::steady_clock::now();
+  result.stats.output_ms = ms_between(solved, end);
+  result.stats.time_ms = ms_between(start, end);
   return result;
 }
 

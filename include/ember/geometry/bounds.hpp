@@ -56,7 +56,8 @@ using PointXYZ = Int<188>;
 /// <point, plane> for a homogeneous point: x*a (188+53 = 241) and w*d
 /// (162+79 = 241), four terms summed pairwise -> 243 <= 255.
 using ClassifyValue = Int<243>;
-static_assert(ClassifyValue::bits <= kMaxBits, "classify must fit the 256-bit budget");
+static_assert(ClassifyValue::bits <= kMaxBits && PointXYZ::bits <= kMaxBits && PointW::bits <= kMaxBits,
+              "points and classify must fit the core's 256-bit budget");
 
 /// <p, n> + d for an integer point: 53+26 = 79 per product, three products ->
 /// 81, + d (79) -> 82 bits: fits __int128.

@@ -4,7 +4,8 @@
 // Int<Bits> holds a value v with |v| < 2^Bits. Arithmetic derives the bound of
 // the result statically (a+b: max+1 bits, a*b: sum of bits), so every width used
 // by a predicate is checked at compile time: a product that could exceed the
-// 256-bit budget does not compile. Storage is the narrowest two's-complement
+// storage limit (kWideMaxBits) does not compile, and the core's 256-bit budget
+// (kMaxBits) is pinned by static_asserts on the predicate types (bounds.hpp). Storage is the narrowest two's-complement
 // representation: int64 for Bits <= 63, __int128 for Bits <= 127, otherwise
 // 64-bit limbs (little endian). No division, no heap, all constexpr-capable.
 #include <algorithm>
@@ -19,9 +20,16 @@ namespace ember {
 using i128 = __int128;
 using u128 = unsigned __int128;
 
-/// Largest magnitude bound any value may have: a 256-bit two's-complement
-/// integer holds |v| < 2^255.
+/// The budget of the Boolean core: every predicate of the geometry layer fits
+/// a 256-bit two's-complement integer (|v| < 2^255); bounds.hpp and the core's
+/// predicates static_assert their widths against it.
 inline constexpr int kMaxBits = 255;
+/// Largest magnitude bound the type itself supports. Only the output stage goes
+/// past kMaxBits: comparing coordinates of two computed points (351 bits) and
+/// the orientation of three computed points in a plane (541 bits) run once per
+/// output vertex or triangulation step, behind floating-point filters
+/// (geometry/exact_order.hpp).
+inline constexpr int kWideMaxBits = 575;
 
 namespace detail {
 /// Limbs needed for a magnitude of Bits bits plus the sign bit.
@@ -47,7 +55,7 @@ struct is_int<Int<B>> : std::true_type {};
 
 template <int Bits>
 class Int {
-  static_assert(Bits >= 1 && Bits <= kMaxBits, "Int<Bits>: magnitude bound must be in [1, 255] bits");
+  static_assert(Bits >= 1 && Bits <= kWideMaxBits, "Int<Bits>: magnitude bound must be in [1, 575] bits");
 
  public:
   static constexpr int bits = Bits;
@@ -230,7 +238,7 @@ class Int {
 namespace detail {
 template <int R, int A, int B, bool Subtract>
 constexpr Int<R> add_sub(const Int<A>& a, const Int<B>& b) {
-  static_assert(R <= kMaxBits, "sum exceeds the 256-bit budget");
+  static_assert(R <= kWideMaxBits, "sum exceeds the 576-bit storage limit");
   constexpr int L = Int<R>::limbs;
   if constexpr (L == 1) {
     return Int<R>(Subtract ? static_cast<std::int64_t>(a.raw()) - static_cast<std::int64_t>(b.raw())
@@ -276,7 +284,7 @@ constexpr Int<detail::max_int(A, B) + 1> operator-(const Int<A>& a, const Int<B>
 template <int A, int B>
 constexpr Int<A + B> operator*(const Int<A>& a, const Int<B>& b) {
   constexpr int R = A + B;
-  static_assert(R <= kMaxBits, "product exceeds the 256-bit budget");
+  static_assert(R <= kWideMaxBits, "product exceeds the 576-bit storage limit");
   if constexpr (R <= 63) {
     return Int<R>(static_cast<std::int64_t>(a.raw()) * static_cast<std::int64_t>(b.raw()));
   } else if constexpr (R <= 127) {
@@ -321,7 +329,7 @@ constexpr bool operator==(const Int<A>& a, const Int<B>& b) {
   return true;
 }
 /// -1, 0 or +1. Compares limbs directly (top limb signed, the rest unsigned) so
-/// no wider difference is formed: works up to Int<255> and needs no carry chain.
+/// no wider difference is formed: works for any width and needs no carry chain.
 template <int A, int B>
 constexpr int compare(const Int<A>& a, const Int<B>& b) {
   if constexpr (Int<A>::limbs == 1 && Int<B>::limbs == 1) {

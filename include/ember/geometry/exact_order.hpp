@@ -1,0 +1,88 @@
+#pragma once
+// Exact predicates on computed (homogeneous) points that the Boolean core never
+// needs but the mesh output does: coordinate order, identity, and orientation
+// of three points in a plane. They go past the core's 256-bit budget
+// (numbers/int.hpp: kWideMaxBits), so each runs behind a floating-point filter
+// on the points' cached doubles and falls back to exact wide integers only
+// when the filter cannot decide.
+//
+// Filter bounds (u = 2^-53): Point::f holds x/w with relative error < 8u.
+//  * compare: |f_a - f_b| > 32u (|f_a| + |f_b|) cannot change sign by errors of
+//    at most 8u|x_a| + 8u|x_b| plus one rounding of the difference.
+//  * orient: with M the largest |coordinate| involved, every difference errs by
+//    < 18uM, every product by < 80uM^2, the determinant by < 170uM^2; the
+//    filter accepts |det| > 256uM^2.
+#include <cmath>
+
+#include "ember/geometry/point.hpp"
+
+namespace ember {
+
+/// x1..x3 times w of another point: 188 + 162 = 350 bits, difference 351.
+using CrossCoord = Int<351>;
+static_assert(std::is_same_v<decltype(PointXYZ{} * PointW{} - PointXYZ{} * PointW{}), CrossCoord>,
+              "coordinate comparison: 188 + 162 = 350, difference -> 351");
+
+/// 2D minor of two projected points: 188 + 188 = 376, difference 377.
+using ProjectedMinor = Int<377>;
+/// Homogeneous 2D orientation: w (162) times a minor (377) = 539, three terms -> 541.
+using Orient2Value = Int<541>;
+static_assert(std::is_same_v<decltype(PointW{} * ProjectedMinor{} - PointW{} * ProjectedMinor{} +
+                                      PointW{} * ProjectedMinor{}),
+                             Orient2Value>,
+              "projected orientation: 162 + 377 = 539, three terms -> 541");
+static_assert(Orient2Value::bits <= kWideMaxBits, "orientation must fit the wide storage limit");
+
+namespace detail {
+inline const PointXYZ& coord(const Point& p, int axis) { return axis == 0 ? p.x : (axis == 1 ? p.y : p.z); }
+}  // namespace detail
+
+/// Sign of a_axis - b_axis (Cartesian coordinates), exact.
+inline int compare_coord(const Point& a, const Point& b, int axis) {
+  const double fa = a.f[axis], fb = b.f[axis];
+  const double bound = 32 * 0x1p-53 * (std::fabs(fa) + std::fabs(fb));
+  if (fa - fb > bound) return 1;
+  if (fb - fa > bound) return -1;
+  // w > 0 for both, so the sign of x_a/w_a - x_b/w_b is that of x_a w_b - x_b w_a.
+  const CrossCoord v = detail::coord(a, axis) * b.w - detail::coord(b, axis) * a.w;
+  return v.sign();
+}
+
+/// The two points are the same point (exact; representations may differ in scale).
+inline bool same_point(const Point& a, const Point& b) {
+  return compare_coord(a, b, 0) == 0 && compare_coord(a, b, 1) == 0 && compare_coord(a, b, 2) == 0;
+}
+
+/// Lexicographic order of the coordinates (x, then y, then z): -1, 0, +1.
+inline int compare_lex(const Point& a, const Point& b) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (const int c = compare_coord(a, b, axis)) return c;
+  return 0;
+}
+
+/// Orientation of a, b, c projected along `drop` onto the coordinates
+/// (u, v) = (drop+1, drop+2) mod 3: +1 counter-clockwise, -1 clockwise, 0
+/// collinear. Seen from the +e_drop side, so for points on a plane whose
+/// normal has a positive component along `drop`, +1 means counter-clockwise
+/// around that normal.
+inline int orient2d_dropped(const Point& a, const Point& b, const Point& c, int drop) {
+  const int u = (drop + 1) % 3, v = (drop + 2) % 3;
+  const double au = a.f[u], av = a.f[v], bu = b.f[u], bv = b.f[v], cu = c.f[u], cv = c.f[v];
+  const double det = (bu - au) * (cv - av) - (bv - av) * (cu - au);
+  const double m = std::fmax(std::fmax(std::fmax(std::fabs(au), std::fabs(av)), std::fmax(std::fabs(bu), std::fabs(bv))),
+                             std::fmax(std::fabs(cu), std::fabs(cv)));
+  const double bound = 256 * 0x1p-53 * m * m;
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  // det [a_u a_v a_w; b_u b_v b_w; c_u c_v c_w] = a_w b_w c_w * (2D orientation); w > 0.
+  const PointXYZ &xu = detail::coord(a, u), &xv = detail::coord(a, v);
+  const PointXYZ &yu = detail::coord(b, u), &yv = detail::coord(b, v);
+  const PointXYZ &zu = detail::coord(c, u), &zv = detail::coord(c, v);
+  const ProjectedMinor m_bc = yu * zv - yv * zu;
+  const ProjectedMinor m_ac = xu * zv - xv * zu;
+  const ProjectedMinor m_ab = xu * yv - xv * yu;
+  const Orient2Value d = a.w * m_bc - b.w * m_ac + c.w * m_ab;
+  return d.sign();
+}
+
+}  // namespace ember

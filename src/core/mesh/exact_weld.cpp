@@ -1,0 +1,103 @@
+// Step 1 of the mesh stage: one id per distinct exact point.
+//
+// Equal exact points round to equal doubles, so sorting the corners by their
+// rounded position brings every class of equal points into one run; distinct
+// points that happen to round alike are then told apart exactly (same_point).
+// Ids are numbered by first appearance in output order, so they do not depend
+// on the sort or on scheduling.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <tuple>
+
+#include "core/mesh/mesh_output.hpp"
+#include "ember/geometry/exact_order.hpp"
+
+namespace ember::core {
+
+namespace {
+
+struct CornerKey {
+  double x, y, z;
+  std::uint32_t corner;
+  friend bool operator<(const CornerKey& a, const CornerKey& b) {
+    return std::tie(a.x, a.y, a.z, a.corner) < std::tie(b.x, b.y, b.z, b.corner);
+  }
+  bool same_position(const CornerKey& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+
+const Point& corner_point(std::span<const OutputPolygon> polys, const Cycles& offsets_only,
+                          const std::vector<std::uint32_t>& poly_of, std::uint32_t corner) {
+  const std::uint32_t p = poly_of[corner];
+  return polys[p].poly.vertices[corner - offsets_only.offsets[p]];
+}
+
+}  // namespace
+
+OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer& q) {
+  OutputVertices out;
+  Cycles& corners = out.corners;
+  corners.offsets.resize(polys.size() + 1, 0);
+  for (std::size_t i = 0; i < polys.size(); ++i)
+    corners.offsets[i + 1] = corners.offsets[i] + static_cast<std::uint32_t>(polys[i].poly.vertices.size());
+  const std::size_t n = corners.offsets.back();
+  std::vector<std::uint32_t> poly_of(n);
+  std::vector<CornerKey> keys(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      for (std::uint32_t c = corners.offsets[i]; c < corners.offsets[i + 1]; ++c) {
+        poly_of[c] = static_cast<std::uint32_t>(i);
+        const Vec3d x = q.dequantize(polys[i].poly.vertices[c - corners.offsets[i]]);
+        keys[c] = {x.x + 0.0, x.y + 0.0, x.z + 0.0, c};  // -0.0 -> +0.0: equal points, equal keys
+      }
+  });
+  tbb::parallel_sort(keys.begin(), keys.end());
+
+  // Representative (first corner in output order) of each corner's class.
+  std::vector<std::uint32_t> rep(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& r) {
+    std::size_t i = r.begin();
+    while (i > 0 && i < n && keys[i].same_position(keys[i - 1])) ++i;  // runs belong to the block they start in
+    std::vector<std::uint32_t> heads;  // class representatives within the current run
+    while (i < r.end() && i < n) {
+      std::size_t j = i;
+      while (j < n && keys[j].same_position(keys[i])) ++j;
+      heads.clear();
+      for (std::size_t k = i; k < j; ++k) {
+        const Point& pk = corner_point(polys, corners, poly_of, keys[k].corner);
+        std::uint32_t found = keys[k].corner;
+        for (const std::uint32_t h : heads)
+          if (same_point(corner_point(polys, corners, poly_of, h), pk)) {
+            found = h;
+            break;
+          }
+        if (found == keys[k].corner) heads.push_back(found);
+        rep[keys[k].corner] = found;  // keys are sorted by corner within a run: the head is the smallest
+      }
+      i = j;
+    }
+  });
+  keys = {};
+
+  // Number classes by their representative's position in output order.
+  corners.ids.resize(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    if (rep[c] == c) {
+      corners.ids[c] = static_cast<std::uint32_t>(out.exact.size());
+      out.exact.push_back(corner_point(polys, corners, poly_of, static_cast<std::uint32_t>(c)));
+    } else {
+      corners.ids[c] = corners.ids[rep[c]];
+    }
+  }
+  out.rounded.resize(out.exact.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.exact.size(), 4096), [&](const auto& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      const Vec3d x = q.dequantize(out.exact[v]);
+      out.rounded[v] = {x.x + 0.0, x.y + 0.0, x.z + 0.0};
+    }
+  });
+  return out;
+}
+
+}  // namespace ember::core

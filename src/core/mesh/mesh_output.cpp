@@ -1,0 +1,91 @@
+// The mesh stage's driver: exact weld, T-junction insertion, region merge,
+// collinear-vertex removal, triangulation, then one indexed triangle mesh.
+#include "core/mesh/mesh_output.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
+namespace ember::core {
+
+namespace {
+
+/// The rounded corners span no area (extended-precision cross product of
+/// differences, exact for doubles whose exponents are close).
+bool rounded_degenerate(const std::vector<Vec3d>& pos, const std::array<std::uint32_t, 3>& t) {
+  using ld = long double;
+  const Vec3d &o = pos[t[0]], &a = pos[t[1]], &b = pos[t[2]];
+  const ld ax = ld(a.x) - o.x, ay = ld(a.y) - o.y, az = ld(a.z) - o.z;
+  const ld bx = ld(b.x) - o.x, by = ld(b.y) - o.y, bz = ld(b.z) - o.z;
+  return ay * bz - az * by == 0 && az * bx - ax * bz == 0 && ax * by - ay * bx == 0;
+}
+
+/// A piece's cycle around its outward normal, repeated ids dropped.
+std::vector<std::uint32_t> piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids) {
+  std::vector<std::uint32_t> loop;
+  for (const std::uint32_t v : ids)
+    if (loop.empty() || loop.back() != v) loop.push_back(v);
+  while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
+  if (poly.flip) std::reverse(loop.begin(), loop.end());
+  return loop;
+}
+
+struct RegionTriangles {
+  std::vector<std::array<std::uint32_t, 3>> tris;
+  std::vector<std::uint32_t> source;  ///< per triangle (fallback pieces keep their own)
+  bool fallback = false;
+};
+
+}  // namespace
+
+MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quantizer& q,
+                               std::span<const Provenance> sources) {
+  MeshOutput out;
+  const OutputVertices verts = exact_weld(polys, q);
+  const Cycles cycles = insert_tjunction_vertices(polys, verts, out.stats.tjunctions);
+  Regions regions = build_regions(polys, cycles, verts);
+  out.stats.collinear_removed = remove_collinear_vertices(regions, verts.exact.size());
+  out.stats.regions = regions.regions.size();
+
+  std::vector<RegionTriangles> per_region(regions.regions.size());
+  tbb::parallel_for(std::size_t{0}, regions.regions.size(), [&](std::size_t r) {
+    RegionTriangles& rt = per_region[r];
+    const Region& region = regions.regions[r];
+    if (triangulate_region(regions, static_cast<std::uint32_t>(r), verts, rt.tris)) {
+      rt.source.assign(rt.tris.size(), region.source);
+      return;
+    }
+    // Fallback: each convex piece on its own (always possible: a convex
+    // polygon with points on its sides has a strictly convex ear).
+    rt.fallback = true;
+    for (const std::uint32_t p : region.pieces) {
+      const std::size_t before = rt.tris.size();
+      std::vector<std::uint32_t> loop = piece_loop(polys[p], cycles[p]);
+      if (loop.size() >= 3) triangulate_loop(std::move(loop), region.plane, verts, rt.tris);
+      rt.source.resize(rt.tris.size(), polys[p].id);
+      (void)before;
+    }
+  });
+
+  // Vertices in order of first use, so numbering follows the output order.
+  std::vector<std::uint32_t> remap(verts.exact.size(), UINT32_MAX);
+  Mesh& mesh = out.mesh;
+  for (std::size_t r = 0; r < per_region.size(); ++r) {
+    const RegionTriangles& rt = per_region[r];
+    out.stats.fallback_regions += rt.fallback;
+    for (std::size_t i = 0; i < rt.tris.size(); ++i) {
+      std::array<std::uint32_t, 3> t{};
+      for (int c = 0; c < 3; ++c) {
+        std::uint32_t& id = remap[rt.tris[i][c]];
+        if (id == UINT32_MAX) id = mesh.add_vertex(verts.rounded[rt.tris[i][c]]);
+        t[c] = id;
+      }
+      if (rounded_degenerate(mesh.vertices, t)) ++out.stats.rounded_degenerate;
+      mesh.add_face({t[0], t[1], t[2]});
+      out.provenance.push_back(sources[rt.source[i]]);
+    }
+  }
+  return out;
+}
+
+}  // namespace ember::core

@@ -1,0 +1,113 @@
+#pragma once
+// The mesh stage: turns the core's exact output polygons (a soup of convex
+// pieces with T-junctions) into an indexed triangle mesh that is closed
+// wherever the exact result is closed.
+//
+//  1. exact_weld:   one id per exact point (equal points, however represented,
+//                   share it); each id is rounded to double once.
+//  2. tjunctions:   every vertex lying in the open interior of a polygon edge
+//                   is inserted into that edge (exact incidence tests).
+//  3. regions:      pieces in the same oriented plane that share an edge are
+//                   merged (their common edges cancel); a boundary vertex that
+//                   only joins collinear edges between the same two regions is
+//                   removed on both sides.
+//  4. triangulate:  every region (outer loop + holes) is ear-clipped with exact
+//                   orientation tests in its plane's projection.
+// Everything is decided on exact points; no epsilon anywhere.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/solve.hpp"
+#include "ember/boolean.hpp"
+#include "ember/core/quantize.hpp"
+
+namespace ember::core {
+
+/// Flat cyclic vertex lists: polygon p is ids[offsets[p] .. offsets[p+1]).
+struct Cycles {
+  std::vector<std::uint32_t> offsets{0};
+  std::vector<std::uint32_t> ids;
+  std::size_t size() const { return offsets.size() - 1; }
+  std::span<const std::uint32_t> operator[](std::size_t p) const {
+    return {ids.data() + offsets[p], offsets[p + 1] - offsets[p]};
+  }
+};
+
+/// Distinct exact points of the output.
+struct OutputVertices {
+  std::vector<Point> exact;     ///< a representative of each distinct point
+  std::vector<Vec3d> rounded;   ///< its correctly rounded position in caller units
+  Cycles corners;               ///< per output polygon: its corners' ids, in the polygon's own order
+};
+
+/// Step 1. Polygons keep their stored (unflipped) vertex order.
+OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer& q);
+
+/// Step 2. Per polygon (unflipped order): corners with every vertex that lies
+/// in the open interior of an edge inserted in order along it. Counts the
+/// insertions in `inserted`.
+Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts,
+                                 std::size_t& inserted);
+
+/// A region: pieces of one oriented plane joined across shared edges.
+struct Region {
+  Plane plane;                   ///< the oriented support plane (outward normal)
+  std::uint32_t source = 0;      ///< lowest source id among its pieces (provenance)
+  std::vector<std::uint32_t> pieces;  ///< output polygon indices
+};
+
+/// A directed boundary edge of a region (the region lies to its left, seen
+/// from the region's outward normal).
+struct BoundaryEdge {
+  std::uint32_t from = 0, to = 0;
+  std::uint32_t region = 0;
+  std::uint32_t next = 0;  ///< next boundary edge of the same loop
+  bool alive = true;
+};
+
+struct Regions {
+  std::vector<Region> regions;
+  std::vector<BoundaryEdge> edges;  ///< grouped by region, loops linked by `next`
+  std::vector<std::uint32_t> edge_begin;  ///< region r owns edges[edge_begin[r] .. edge_begin[r+1])
+};
+
+/// Step 3 (merge). `cycles` are the polygons after step 2, unflipped.
+Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles, const OutputVertices& verts);
+
+/// Step 3 (collinear vertices). Returns how many vertices were removed.
+std::size_t remove_collinear_vertices(Regions& regions, std::size_t vertex_count);
+
+/// Orientation of a, b, c seen from the positive side of `plane` (+1 counter-clockwise).
+int orient_in_plane(const Point& a, const Point& b, const Point& c, const Plane& plane);
+
+/// Step 4 for one region: appends triangles (counter-clockwise around the
+/// region's outward normal). False if the region's loops are not a polygon
+/// with holes that ear clipping can handle; nothing is appended then.
+bool triangulate_region(const Regions& regions, std::uint32_t region, const OutputVertices& verts,
+                        std::vector<std::array<std::uint32_t, 3>>& out);
+
+/// Ear-clips one cyclic polygon (no holes) given as vertex ids, counter-
+/// clockwise around `plane`. False if no valid ear can be found.
+bool triangulate_loop(std::vector<std::uint32_t> loop, const Plane& plane, const OutputVertices& verts,
+                      std::vector<std::array<std::uint32_t, 3>>& out);
+
+struct MeshOutputStats {
+  std::size_t tjunctions = 0;          ///< vertices inserted into edges
+  std::size_t collinear_removed = 0;   ///< boundary vertices removed on both sides
+  std::size_t regions = 0;
+  std::size_t fallback_regions = 0;    ///< regions triangulated piece by piece
+  std::size_t rounded_degenerate = 0;  ///< triangles whose rounded corners have zero area
+};
+
+struct MeshOutput {
+  Mesh mesh;
+  std::vector<Provenance> provenance;
+  MeshOutputStats stats;
+};
+
+/// Steps 1-4. `sources[id]` is the provenance of source polygon id.
+MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quantizer& q,
+                               std::span<const Provenance> sources);
+
+}  // namespace ember::core

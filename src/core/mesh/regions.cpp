@@ -1,0 +1,237 @@
+// Step 3 of the mesh stage: merge the pieces of each oriented plane into
+// regions and drop the vertices that only the subdivision needed.
+//
+// After step 2 every piece's edges are split at all vertices on them, so two
+// pieces of one plane that touch along a segment carry the same directed
+// edges, opposite to each other: such edges are interior and cancel. What
+// remains around a group of pieces joined that way is the boundary of the
+// merged region (outer loop and holes), with the region on the left.
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <numeric>
+#include <tuple>
+
+#include "core/mesh/mesh_output.hpp"
+#include "ember/geometry/exact_order.hpp"
+
+namespace ember::core {
+
+namespace {
+
+unsigned __int128 gcd128(unsigned __int128 a, unsigned __int128 b) {
+  while (b != 0) {
+    const unsigned __int128 t = a % b;
+    a = b;
+    b = t;
+  }
+  return a;
+}
+
+/// The plane scaled to coprime coefficients: equal for coplanar, equally
+/// oriented supports of different input triangles (an exact coplanarity id).
+struct PlaneKey {
+  std::int64_t a, b, c;
+  __int128 d;
+  friend bool operator<(const PlaneKey& x, const PlaneKey& y) {
+    return std::tie(x.a, x.b, x.c, x.d) < std::tie(y.a, y.b, y.c, y.d);
+  }
+  friend bool operator==(const PlaneKey& x, const PlaneKey& y) {
+    return x.a == y.a && x.b == y.b && x.c == y.c && x.d == y.d;
+  }
+};
+
+PlaneKey canonical(const Plane& p, bool flip) {
+  // |a|, |b|, |c| <= 2^52 and |d| < 2^79: they fit int64 / __int128.
+  __int128 v[4] = {p.a.raw(), p.b.raw(), p.c.raw(), p.d.raw()};
+  unsigned __int128 g = 0;
+  for (const __int128 x : v) g = gcd128(g, static_cast<unsigned __int128>(x < 0 ? -x : x));
+  for (__int128& x : v) x = x / static_cast<__int128>(g) * (flip ? -1 : 1);
+  return {static_cast<std::int64_t>(v[0]), static_cast<std::int64_t>(v[1]), static_cast<std::int64_t>(v[2]), v[3]};
+}
+
+struct UnionFind {
+  std::vector<std::uint32_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void join(std::uint32_t x, std::uint32_t y) {
+    x = find(x), y = find(y);
+    if (x != y) parent[std::max(x, y)] = std::min(x, y);
+  }
+};
+
+/// Oriented cycle of piece p: reversed when the piece is emitted flipped.
+std::vector<std::uint32_t> oriented_cycle(const OutputPolygon& poly, std::span<const std::uint32_t> ids) {
+  std::vector<std::uint32_t> c(ids.begin(), ids.end());
+  if (poly.flip) std::reverse(c.begin(), c.end());
+  return c;
+}
+
+/// At vertex b, entered from a: the candidate edge that comes first when
+/// turning clockwise from the ray b->a. Keeps loops that touch at a vertex
+/// apart, each with its region on the left.
+std::uint32_t first_clockwise(const OutputVertices& verts, const Plane& plane, std::uint32_t a, std::uint32_t b,
+                              const std::vector<BoundaryEdge>& edges, const std::vector<std::uint32_t>& cands) {
+  const Point &pa = verts.exact[a], &pb = verts.exact[b];
+  int axis = 0;
+  while (axis < 2 && compare_coord(pa, pb, axis) == 0) ++axis;
+  const int a_side = compare_coord(pa, pb, axis);
+  auto half = [&](std::uint32_t c) {
+    const int o = orient_in_plane(pb, pa, verts.exact[c], plane);
+    if (o < 0) return 0;  // right of the ray: clockwise angle in (0, 180)
+    if (o > 0) return 2;
+    return compare_coord(verts.exact[c], pb, axis) == a_side ? 3 : 1;  // back along the ray: last
+  };
+  std::uint32_t best = cands[0];
+  int best_half = half(edges[best].to);
+  for (std::size_t i = 1; i < cands.size(); ++i) {
+    const std::uint32_t e = cands[i];
+    const int h = half(edges[e].to);
+    if (h < best_half) {
+      best = e, best_half = h;
+    } else if (h == best_half && (h == 0 || h == 2) &&
+               orient_in_plane(pb, verts.exact[edges[e].to], verts.exact[edges[best].to], plane) < 0) {
+      best = e;  // best lies clockwise of e: e comes first
+    }
+  }
+  return best;
+}
+
+/// Links each boundary edge of one region to the next edge of its loop.
+void link_loops(const OutputVertices& verts, const Plane& plane, std::vector<BoundaryEdge>& edges, std::size_t first,
+                std::size_t last) {
+  std::vector<std::uint32_t> order(last - first);
+  std::iota(order.begin(), order.end(), static_cast<std::uint32_t>(first));
+  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
+    return std::tie(edges[x].from, x) < std::tie(edges[y].from, y);
+  });
+  std::vector<std::uint32_t> cands;
+  for (std::size_t e = first; e < last; ++e) {
+    const std::uint32_t b = edges[e].to;
+    auto it = std::lower_bound(order.begin(), order.end(), b,
+                               [&](std::uint32_t x, std::uint32_t v) { return edges[x].from < v; });
+    cands.clear();
+    for (; it != order.end() && edges[*it].from == b; ++it) cands.push_back(*it);
+    if (cands.empty()) {  // an open loop (open input): terminate it on itself
+      edges[e].next = static_cast<std::uint32_t>(e);
+      continue;
+    }
+    edges[e].next = cands.size() == 1 ? cands[0] : first_clockwise(verts, plane, edges[e].from, b, edges, cands);
+  }
+}
+
+struct GroupResult {
+  std::vector<Region> regions;
+  std::vector<std::vector<BoundaryEdge>> edges;  // per region, `region` field local
+};
+
+GroupResult build_group(std::span<const OutputPolygon> polys, const Cycles& cycles,
+                        std::span<const std::uint32_t> members, const Plane& plane) {
+  struct DirEdge {
+    std::uint32_t lo, hi;
+    bool forward;  // lo -> hi
+    std::uint32_t member;
+  };
+  std::vector<DirEdge> dir;
+  std::vector<std::vector<std::uint32_t>> oriented(members.size());
+  for (std::uint32_t m = 0; m < members.size(); ++m) {
+    oriented[m] = oriented_cycle(polys[members[m]], cycles[members[m]]);
+    const auto& c = oriented[m];
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      const std::uint32_t a = c[k], b = c[(k + 1) % c.size()];
+      if (a != b) dir.push_back({std::min(a, b), std::max(a, b), a < b, m});
+    }
+  }
+  std::sort(dir.begin(), dir.end(), [](const DirEdge& x, const DirEdge& y) {
+    return std::tie(x.lo, x.hi, x.forward, x.member) < std::tie(y.lo, y.hi, y.forward, y.member);
+  });
+  UnionFind uf(members.size());
+  std::vector<char> interior(dir.size(), 0);
+  for (std::size_t i = 0; i < dir.size();) {
+    std::size_t j = i;
+    while (j < dir.size() && dir[j].lo == dir[i].lo && dir[j].hi == dir[i].hi) ++j;
+    if (j - i == 2 && dir[i].forward != dir[i + 1].forward) {
+      uf.join(dir[i].member, dir[i + 1].member);
+      interior[i] = interior[i + 1] = 1;
+    }
+    i = j;
+  }
+  GroupResult out;
+  std::vector<std::uint32_t> region_of(members.size(), UINT32_MAX);
+  for (std::uint32_t m = 0; m < members.size(); ++m) {
+    const std::uint32_t root = uf.find(m);
+    if (region_of[root] == UINT32_MAX) {
+      region_of[root] = static_cast<std::uint32_t>(out.regions.size());
+      out.regions.push_back({plane, UINT32_MAX, {}});
+      out.edges.emplace_back();
+    }
+    Region& r = out.regions[region_of[root]];
+    r.pieces.push_back(members[m]);
+    r.source = std::min(r.source, polys[members[m]].id);
+  }
+  for (std::size_t i = 0; i < dir.size(); ++i) {
+    if (interior[i]) continue;
+    const DirEdge& d = dir[i];
+    const std::uint32_t r = region_of[uf.find(d.member)];
+    out.edges[r].push_back({d.forward ? d.lo : d.hi, d.forward ? d.hi : d.lo, r, 0, true});
+  }
+  return out;
+}
+
+}  // namespace
+
+int orient_in_plane(const Point& a, const Point& b, const Point& c, const Plane& plane) {
+  const int drop = dominant_axis(plane);
+  const int o = orient2d_dropped(a, b, c, drop);
+  return plane.normal(drop).negative() ? -o : o;
+}
+
+Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles, const OutputVertices& verts) {
+  std::vector<PlaneKey> keys(polys.size());
+  tbb::parallel_for(std::size_t{0}, polys.size(),
+                    [&](std::size_t p) { keys[p] = canonical(polys[p].poly.support, polys[p].flip); });
+  std::vector<std::uint32_t> order(polys.size());
+  std::iota(order.begin(), order.end(), 0u);
+  tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
+    return keys[x] < keys[y] || (keys[x] == keys[y] && x < y);
+  });
+  std::vector<std::size_t> group_begin;
+  for (std::size_t i = 0; i < order.size(); ++i)
+    if (i == 0 || !(keys[order[i]] == keys[order[i - 1]])) group_begin.push_back(i);
+  group_begin.push_back(order.size());
+  const std::size_t groups = group_begin.size() - 1;
+
+  std::vector<GroupResult> results(groups);
+  tbb::parallel_for(std::size_t{0}, groups, [&](std::size_t g) {
+    const std::span<const std::uint32_t> members(order.data() + group_begin[g], group_begin[g + 1] - group_begin[g]);
+    const OutputPolygon& first = polys[members[0]];
+    const Plane plane = first.flip ? -first.poly.support : first.poly.support;
+    results[g] = build_group(polys, cycles, members, plane);
+    for (std::size_t r = 0; r < results[g].edges.size(); ++r) {
+      auto& e = results[g].edges[r];
+      link_loops(verts, plane, e, 0, e.size());
+    }
+  });
+
+  Regions out;
+  out.edge_begin.push_back(0);
+  for (GroupResult& g : results)
+    for (std::size_t r = 0; r < g.regions.size(); ++r) {
+      const auto region = static_cast<std::uint32_t>(out.regions.size());
+      const auto base = static_cast<std::uint32_t>(out.edges.size());
+      for (BoundaryEdge e : g.edges[r]) {
+        e.region = region;
+        e.next += base;
+        out.edges.push_back(e);
+      }
+      out.edge_begin.push_back(static_cast<std::uint32_t>(out.edges.size()));
+      out.regions.push_back(std::move(g.regions[r]));
+    }
+  return out;
+}
+
+}  // namespace ember::core

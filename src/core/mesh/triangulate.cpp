@@ -1,0 +1,223 @@
+// Step 4 of the mesh stage: ear clipping of a region (outer loop plus holes)
+// with exact orientation tests in the region's plane (orient_in_plane, behind
+// a floating-point filter). Holes are joined to the outer loop by a bridge
+// that provably crosses nothing; an ear is clipped only when it has positive
+// area and no other vertex lies in its closed triangle, so no zero-area
+// triangle is ever produced. Anything unexpected answers false and the caller
+// falls back to triangulating the region's pieces one by one.
+#include <algorithm>
+#include <cmath>
+
+#include "core/mesh/mesh_output.hpp"
+#include "ember/geometry/exact_order.hpp"
+
+namespace ember::core {
+
+namespace {
+
+struct Ctx {
+  const OutputVertices& verts;
+  const Plane& plane;
+  const Point& pt(std::uint32_t v) const { return verts.exact[v]; }
+  int orient(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+    return orient_in_plane(pt(a), pt(b), pt(c), plane);
+  }
+};
+
+/// x strictly inside the angle at corner b of a loop running a -> b -> c
+/// (region on the left).
+bool inside_corner(const Ctx& k, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t x) {
+  if (k.orient(a, b, c) > 0) return k.orient(a, b, x) > 0 && k.orient(b, c, x) > 0;
+  return !(k.orient(a, b, x) <= 0 && k.orient(b, c, x) <= 0);
+}
+
+/// x lies on the closed segment [s, t] (x collinear with it).
+bool on_segment(const Ctx& k, std::uint32_t s, std::uint32_t t, std::uint32_t x) {
+  const Point &ps = k.pt(s), &pt = k.pt(t), &px = k.pt(x);
+  for (int axis = 0; axis < 3; ++axis) {
+    const int a = compare_coord(px, ps, axis), b = compare_coord(px, pt, axis);
+    if (a * b > 0) return false;
+  }
+  return true;
+}
+
+/// The closed segments [p, q] and [s, t] share a point.
+bool segments_meet(const Ctx& k, std::uint32_t p, std::uint32_t q, std::uint32_t s, std::uint32_t t) {
+  const int o1 = k.orient(p, q, s), o2 = k.orient(p, q, t), o3 = k.orient(s, t, p), o4 = k.orient(s, t, q);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  return (o1 == 0 && on_segment(k, p, q, s)) || (o2 == 0 && on_segment(k, p, q, t)) ||
+         (o3 == 0 && on_segment(k, s, t, p)) || (o4 == 0 && on_segment(k, s, t, q));
+}
+
+/// Loops of the region's alive boundary edges, each as its vertices in order.
+bool collect_loops(const Regions& regions, std::uint32_t region, std::vector<std::vector<std::uint32_t>>& loops) {
+  const std::uint32_t first = regions.edge_begin[region], last = regions.edge_begin[region + 1];
+  std::vector<char> seen(last - first, 0);
+  for (std::uint32_t s = first; s < last; ++s) {
+    if (!regions.edges[s].alive || seen[s - first]) continue;
+    std::vector<std::uint32_t> loop;
+    std::uint32_t e = s;
+    do {
+      const BoundaryEdge& be = regions.edges[e];
+      if (e < first || e >= last || !be.alive || seen[e - first]) return false;
+      seen[e - first] = 1;
+      loop.push_back(be.from);
+      e = be.next;
+    } while (e != s);
+    if (loop.size() < 3) return false;
+    loops.push_back(std::move(loop));
+  }
+  return true;
+}
+
+/// +1 for a counter-clockwise loop, -1 clockwise, 0 if undecidable here: the
+/// turn at its lexicographically smallest vertex, which is a corner of the
+/// loop's convex hull.
+int loop_orientation(const Ctx& k, const std::vector<std::uint32_t>& loop) {
+  std::size_t m = 0;
+  for (std::size_t i = 1; i < loop.size(); ++i)
+    if (compare_lex(k.pt(loop[i]), k.pt(loop[m])) < 0) m = i;
+  for (std::size_t i = 0; i < loop.size(); ++i)
+    if (i != m && loop[i] == loop[m]) return 0;  // pinched at the extreme vertex
+  const std::size_t n = loop.size();
+  return k.orient(loop[(m + n - 1) % n], loop[m], loop[(m + 1) % n]);
+}
+
+double approx_dist2(const Ctx& k, std::uint32_t a, std::uint32_t b) {
+  const auto &fa = k.pt(a).f, &fb = k.pt(b).f;
+  return (fa[0] - fb[0]) * (fa[0] - fb[0]) + (fa[1] - fb[1]) * (fa[1] - fb[1]) + (fa[2] - fb[2]) * (fa[2] - fb[2]);
+}
+
+/// Joins `hole` into `outer` with a bridge from the hole's lexicographically
+/// largest vertex to the nearest outer vertex it sees. False if none found.
+bool bridge_hole(const Ctx& k, std::vector<std::uint32_t>& outer, const std::vector<std::uint32_t>& hole,
+                 const std::vector<std::vector<std::uint32_t>>& others) {
+  const std::size_t hn = hole.size();
+  std::size_t hi = 0;
+  for (std::size_t i = 1; i < hn; ++i)
+    if (compare_lex(k.pt(hole[i]), k.pt(hole[hi])) > 0) hi = i;
+  const std::uint32_t h = hole[hi], hp = hole[(hi + hn - 1) % hn], hx = hole[(hi + 1) % hn];
+  std::vector<std::size_t> cand(outer.size());
+  for (std::size_t i = 0; i < outer.size(); ++i) cand[i] = i;
+  std::sort(cand.begin(), cand.end(), [&](std::size_t x, std::size_t y) {
+    const double dx = approx_dist2(k, h, outer[x]), dy = approx_dist2(k, h, outer[y]);
+    return dx < dy || (dx == dy && x < y);
+  });
+  auto crosses_loop = [&](const std::vector<std::uint32_t>& loop, std::uint32_t p) {
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const std::uint32_t s = loop[i], t = loop[(i + 1) % loop.size()];
+      if (s == h || t == h || s == p || t == p) continue;  // corners are checked by the cone tests
+      if (segments_meet(k, h, p, s, t)) return true;
+    }
+    return false;
+  };
+  const std::size_t on = outer.size();
+  for (const std::size_t i : cand) {
+    const std::uint32_t p = outer[i];
+    if (p == h) {  // the hole touches the outer loop here: splice it in at the shared vertex
+      std::vector<std::uint32_t> merged(outer.begin(), outer.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+      for (std::size_t j = 1; j <= hn; ++j) merged.push_back(hole[(hi + j) % hn]);
+      merged.insert(merged.end(), outer.begin() + static_cast<std::ptrdiff_t>(i) + 1, outer.end());
+      outer = std::move(merged);
+      return true;
+    }
+    if (!inside_corner(k, outer[(i + on - 1) % on], p, outer[(i + 1) % on], h)) continue;
+    if (!inside_corner(k, hp, h, hx, p)) continue;
+    // The open segment may not pass through any other vertex equal to p or h.
+    if (crosses_loop(outer, p) || crosses_loop(hole, p)) continue;
+    bool blocked = false;
+    for (const auto& o : others) blocked = blocked || crosses_loop(o, p);
+    if (blocked) continue;
+    std::vector<std::uint32_t> merged(outer.begin(), outer.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+    for (std::size_t j = 0; j <= hn; ++j) merged.push_back(hole[(hi + j) % hn]);
+    merged.insert(merged.end(), outer.begin() + static_cast<std::ptrdiff_t>(i), outer.end());
+    outer = std::move(merged);
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool triangulate_loop(std::vector<std::uint32_t> loop, const Plane& plane, const OutputVertices& verts,
+                      std::vector<std::array<std::uint32_t, 3>>& out) {
+  const Ctx k{verts, plane};
+  const std::size_t before = out.size();
+  std::size_t n = loop.size();
+  std::vector<std::size_t> prev(n), next(n);
+  for (std::size_t i = 0; i < n; ++i) prev[i] = (i + n - 1) % n, next[i] = (i + 1) % n;
+  // Conservative double boxes: Point::f errs < 8 ulp; 2^-40 relative covers it.
+  auto box_excludes = [&](std::size_t a, std::size_t b, std::size_t c, std::size_t x) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const double fa = k.pt(loop[a]).f[axis], fb = k.pt(loop[b]).f[axis], fc = k.pt(loop[c]).f[axis];
+      const double fx = k.pt(loop[x]).f[axis];
+      const double lo = std::min({fa, fb, fc}), hi = std::max({fa, fb, fc});
+      const double slack = 0x1p-40 * std::max({std::fabs(lo), std::fabs(hi), std::fabs(fx)});
+      if (fx < lo - slack || fx > hi + slack) return true;
+    }
+    return false;
+  };
+  auto is_ear = [&](std::size_t b) {
+    const std::size_t a = prev[b], c = next[b];
+    if (k.orient(loop[a], loop[b], loop[c]) <= 0) return false;
+    for (std::size_t x = next[c]; x != a; x = next[x]) {
+      const std::uint32_t v = loop[x];
+      if (v == loop[a] || v == loop[b] || v == loop[c] || box_excludes(a, b, c, x)) continue;
+      if (k.orient(loop[a], loop[b], v) >= 0 && k.orient(loop[b], loop[c], v) >= 0 &&
+          k.orient(loop[c], loop[a], v) >= 0)
+        return false;
+    }
+    return true;
+  };
+  std::size_t cur = 0, misses = 0;
+  while (n > 3) {
+    if (is_ear(cur)) {
+      out.push_back({loop[prev[cur]], loop[cur], loop[next[cur]]});
+      next[prev[cur]] = next[cur];
+      prev[next[cur]] = prev[cur];
+      cur = prev[cur];
+      --n;
+      misses = 0;
+    } else {
+      cur = next[cur];
+      if (++misses > n) {
+        out.resize(before);
+        return false;
+      }
+    }
+  }
+  if (k.orient(loop[prev[cur]], loop[cur], loop[next[cur]]) <= 0) {
+    out.resize(before);
+    return false;
+  }
+  out.push_back({loop[prev[cur]], loop[cur], loop[next[cur]]});
+  return true;
+}
+
+bool triangulate_region(const Regions& regions, std::uint32_t region, const OutputVertices& verts,
+                        std::vector<std::array<std::uint32_t, 3>>& out) {
+  const Plane& plane = regions.regions[region].plane;
+  const Ctx k{verts, plane};
+  std::vector<std::vector<std::uint32_t>> loops;
+  if (!collect_loops(regions, region, loops)) return false;
+  std::vector<std::uint32_t> outer;
+  std::vector<std::vector<std::uint32_t>> holes;
+  for (auto& loop : loops) {
+    const int o = loop_orientation(k, loop);
+    if (o == 0) return false;
+    if (o > 0) {
+      if (!outer.empty()) return false;  // several outer loops: not one polygon with holes
+      outer = std::move(loop);
+    } else {
+      holes.push_back(std::move(loop));
+    }
+  }
+  if (outer.empty()) return false;
+  for (std::size_t i = 0; i < holes.size(); ++i) {
+    const std::vector<std::vector<std::uint32_t>> rest(holes.begin() + static_cast<std::ptrdiff_t>(i) + 1, holes.end());
+    if (!bridge_hole(k, outer, holes[i], rest)) return false;
+  }
+  return triangulate_loop(std::move(outer), plane, verts, out);
+}
+
+}  // namespace ember::core
