@@ -67,7 +67,7 @@ void print_stats(const ember::BooleanResult& r, const char* op) {
                "\"output_polygons\": %zu, \"output_vertices\": %zu, \"solid_operands\": %zu, "
                "\"tjunctions_resolved\": %zu, \"collinear_removed\": %zu, \"regions\": %zu, "
                "\"fallback_regions\": %zu, \"rounded_degenerate\": %zu, \"time_ms\": %.3f, "
-               "\"phases_ms\": {\"setup\": %.3f, \"proof\": %.3f, \"solve\": %.3f, \"output\": %.3f}, "
+               "\"setup_ms\": %.3f, \"proof_ms\": %.3f, \"solve_ms\": %.3f, \"output_ms\": %.3f, "
                "\"threads\": %d}\n",
                op, r.stats.input_triangles, r.stats.dropped_degenerate, r.stats.output_polygons,
                r.stats.output_vertices, r.stats.solid_operands, r.stats.tjunctions_resolved,

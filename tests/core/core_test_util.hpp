@@ -14,6 +14,18 @@
 
 namespace ember::test {
 
+/// The default output is a triangle mesh that is closed and consistently
+/// oriented whenever every operand is (issue 11): every edge balanced, no
+/// fallback regions, no zero-area triangles (exact inputs round exactly here).
+inline void expect_watertight_if_closed(std::span<const Mesh> ops, const BooleanOptions& opt, const BooleanResult& r) {
+  if (opt.output != BooleanOptions::Output::Triangles) return;
+  for (std::size_t f = 0; f < r.mesh.face_count(); ++f) ASSERT_EQ(r.mesh.face_size(f), 3u) << "face " << f;
+  EXPECT_EQ(r.stats.fallback_regions, 0u);
+  for (const Mesh& m : ops)
+    if (unbalanced_edges(m) != 0) return;
+  EXPECT_EQ(unbalanced_edges(r.mesh), 0u) << "closed operands must give a closed, consistently oriented result";
+}
+
 /// Runs the Boolean and checks the structural invariants of the result:
 /// faces have >= 3 vertices, non-zero area and (with convex_tol >= 0) are
 /// convex and planar; one provenance entry per face with indices in range;
@@ -30,6 +42,7 @@ inline BooleanResult run_checked(std::span<const Mesh> ops, Operation op, const 
     }
   }
   EXPECT_EQ(r.stats.output_polygons, r.mesh.face_count());
+  expect_watertight_if_closed(ops, opt, r);
   // Operands proven solid take the shortcuts; the general path must agree.
   if (opt.detect_solid && r.stats.solid_operands > 0) {
     BooleanOptions general = opt;

@@ -212,6 +212,23 @@ inline bool closed_oriented(const Mesh& m) {
   return true;
 }
 
+/// Undirected edges whose uses in the two directions differ in number: 0 means
+/// closed and consistently oriented (non-manifold edges allowed when their uses
+/// balance, as where solids touch along an edge).
+inline std::size_t unbalanced_edges(const Mesh& m) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> balance;
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    auto face = m.face(f);
+    for (std::size_t k = 0; k < face.size(); ++k) {
+      const std::uint32_t a = face[k], b = face[(k + 1) % face.size()];
+      if (a != b) balance[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
+    }
+  }
+  std::size_t bad = 0;
+  for (const auto& [e, c] : balance) bad += c != 0;
+  return bad;
+}
+
 /// Reference indicators written independently of the library, with the paper's
 /// semantics (Eq. 5): a point is inside operand i iff w_i != 0.
 inline Indicator reference_indicator(Operation op, std::size_t n, int min_k = 1) {
