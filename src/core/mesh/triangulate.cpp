@@ -7,6 +7,7 @@
 // falls back to triangulating the region's pieces one by one.
 #include <algorithm>
 #include <cmath>
+#include <queue>
 
 #include "core/mesh/mesh_output.hpp"
 #include "ember/geometry/exact_order.hpp"
@@ -169,23 +170,60 @@ bool triangulate_loop(std::vector<std::uint32_t> loop, const Plane& plane, const
     }
     return true;
   };
-  std::size_t cur = 0, misses = 0;
+  // Best-shaped ear first (Manifold clips sharpest ears first for the same
+  // reason): an ear at a nearly straight vertex would be a sliver, whose tiny
+  // height the rounding to double and a later re-quantization can flip. The
+  // shape is judged in doubles; validity is always decided exactly.
+  auto quality = [&](std::size_t b) {
+    const auto &fa = k.pt(loop[prev[b]]).f, &fb = k.pt(loop[b]).f, &fc = k.pt(loop[next[b]]).f;
+    const double ux = fb[0] - fa[0], uy = fb[1] - fa[1], uz = fb[2] - fa[2];
+    const double vx = fc[0] - fb[0], vy = fc[1] - fb[1], vz = fc[2] - fb[2];
+    const double wx = fa[0] - fc[0], wy = fa[1] - fc[1], wz = fa[2] - fc[2];
+    const double cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+    const double l2 = ux * ux + uy * uy + uz * uz + vx * vx + vy * vy + vz * vz + wx * wx + wy * wy + wz * wz;
+    return l2 > 0 ? std::sqrt(cx * cx + cy * cy + cz * cz) / l2 : 0.0;
+  };
+  struct Candidate {
+    double q;
+    std::size_t node;
+    std::uint32_t version;
+    bool operator<(const Candidate& o) const { return q != o.q ? q < o.q : node > o.node; }
+  };
+  std::vector<std::uint32_t> version(loop.size(), 0);
+  std::vector<char> removed(loop.size(), 0);
+  std::priority_queue<Candidate> heap;
+  auto push = [&](std::size_t b) { heap.push({quality(b), b, ++version[b]}); };
+  auto push_all = [&] {
+    for (std::size_t i = 0; i < loop.size(); ++i)
+      if (!removed[i]) push(i);
+  };
+  push_all();
+  bool refilled = false;
   while (n > 3) {
-    if (is_ear(cur)) {
-      out.push_back({loop[prev[cur]], loop[cur], loop[next[cur]]});
-      next[prev[cur]] = next[cur];
-      prev[next[cur]] = prev[cur];
-      cur = prev[cur];
-      --n;
-      misses = 0;
-    } else {
-      cur = next[cur];
-      if (++misses > n) {
+    if (heap.empty()) {
+      if (refilled) {  // a whole round without a valid ear
         out.resize(before);
         return false;
       }
+      push_all();
+      refilled = true;
+      continue;
     }
+    const Candidate c = heap.top();
+    heap.pop();
+    if (removed[c.node] || c.version != version[c.node] || !is_ear(c.node)) continue;
+    const std::size_t b = c.node, a = prev[b], d = next[b];
+    out.push_back({loop[a], loop[b], loop[d]});
+    next[a] = d;
+    prev[d] = a;
+    removed[b] = 1;
+    --n;
+    push(a);
+    push(d);
+    refilled = false;
   }
+  std::size_t cur = 0;
+  while (removed[cur]) ++cur;
   if (k.orient(loop[prev[cur]], loop[cur], loop[next[cur]]) <= 0) {
     out.resize(before);
     return false;
