@@ -14,6 +14,7 @@
 #include <functional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ember/mesh.hpp"
@@ -32,6 +33,10 @@ enum class Operation {
 using WindingVector = std::span<const int>;
 /// Maps a winding-number vector to inside (true) / outside (false).
 using Indicator = std::function<bool(WindingVector)>;
+/// Progress of one boolean() call: the phase now starting ("prepare",
+/// "solid check", "solve", "export", "done") and a rough estimate of the
+/// fraction of the whole run done so far (0..1, non-decreasing, 1 with "done").
+using ProgressCallback = std::function<void(std::string_view phase, double fraction)>;
 
 struct BooleanOptions {
   /// Worker threads; 0 uses all hardware threads. Results do not depend on it.
@@ -63,6 +68,12 @@ struct BooleanOptions {
   /// Costs a fraction of the Boolean it speeds up; turn off only for inputs
   /// known to fail it.
   bool detect_solid = true;
+  /// Called at phase boundaries so callers can show progress on long runs
+  /// (the library itself never prints). Always called from the thread that
+  /// called boolean(), one call at a time, so it needs no locking of its own;
+  /// it should return quickly. An exception it throws propagates out of
+  /// boolean(). Empty: no calls.
+  ProgressCallback progress;
 };
 
 /// Where an output polygon came from.

@@ -142,10 +142,18 @@ Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer&
   return mesh;
 }
 
+/// The progress hook, if any. Calls happen only between the parallel phases,
+/// on the calling thread, so the callback never runs concurrently with itself.
+/// The fractions are a fixed guess at each phase's share of a typical run.
+void report(const BooleanOptions& options, std::string_view phase, double fraction) {
+  if (options.progress) options.progress(phase, fraction);
+}
+
 }  // namespace
 
 BooleanResult boolean(std::span<const Mesh> operands, Operation op, const BooleanOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  report(options, "prepare", 0.0);
   if (operands.empty()) throw Error("boolean: no operands given; pass at least one mesh");
   if (options.threads < 0) throw Error("boolean: threads must be >= 0 (0 = all hardware threads)");
   if (!options.solid.empty() && options.solid.size() != operands.size())
@@ -283,19 +291,24 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     if (options.detect_solid) {
       // Operands not promised solid are proven solid (or not) exactly.
       for (std::size_t o = 0; o < operands.size(); ++o)
-        if (!ctx.solid[o] && open[o] == 0)
+        if (!ctx.solid[o] && open[o] == 0) {
+          report(options, "solid check", 0.1 + 0.1 * static_cast<double>(o) / static_cast<double>(operands.size()));
           arena.execute([&] {
             ctx.solid[o] = core::check_solid(root, grid, static_cast<std::uint32_t>(o)) == core::SolidVerdict::Solid;
           });
+        }
       grid = {};
     }
     for (const char s : ctx.solid) result.stats.solid_operands += s != 0;
+    report(options, "solve", 0.2);
     arena.execute([&] { polys = core::solve(std::move(root), ctx); });
   }
+  report(options, "export", 0.9);
   arena.execute([&] { result.mesh = export_mesh(polys, q, sources, result.provenance, result.stats.dropped_slivers); });
   result.stats.output_polygons = result.mesh.face_count();
   result.stats.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  report(options, "done", 1.0);
   return result;
 }
 
