@@ -1,4 +1,4 @@
-# The examples in docs/ are code the tests run, so the pages cannot drift from
+# Tests that are scripts. The examples in docs/ are code the tests run, so the pages cannot drift from
 # the interfaces they describe: the C++ API page's program is built and run
 # here (and again as a find_package consumer, EmberInstall.cmake), the CLI
 # page's commands run as one shell script; the Python page's example is run in
@@ -12,4 +12,16 @@ if(EMBER_BUILD_TESTS)
            COMMAND bash ${CMAKE_SOURCE_DIR}/docs/examples/cli_examples.sh $<TARGET_FILE:ember_cli>
                    ${CMAKE_BINARY_DIR}/docs-cli-examples)
   set_tests_properties(docs.cpp_api_example docs.cli_examples PROPERTIES TIMEOUT 600)
+endif()
+
+# CLI behaviour a GoogleTest cannot see: the progress bar needs a terminal
+# (a pseudo-terminal from Python's standard library).
+if(EMBER_BUILD_TESTS)
+  find_package(Python3 COMPONENTS Interpreter QUIET)
+  if(Python3_Interpreter_FOUND)
+    add_test(NAME cli.progress_tty
+             COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/tests/cli/progress_tty.py $<TARGET_FILE:ember_cli>
+                     ${CMAKE_BINARY_DIR}/cli-progress-tty)
+    set_tests_properties(cli.progress_tty PROPERTIES TIMEOUT 300)
+  endif()
 endif()
