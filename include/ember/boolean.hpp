@@ -15,6 +15,7 @@
 #include <functional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ember/mesh.hpp"
@@ -33,6 +34,10 @@ enum class Operation {
 using WindingVector = std::span<const int>;
 /// Maps a winding-number vector to inside (true) / outside (false).
 using Indicator = std::function<bool(WindingVector)>;
+/// Progress of one boolean() call: the phase now starting ("prepare",
+/// "solid check", "solve", "export", "done") and a rough estimate of the
+/// fraction of the whole run done so far (0..1, non-decreasing, 1 with "done").
+using ProgressCallback = std::function<void(std::string_view phase, double fraction)>;
 
 struct BooleanOptions {
   /// Worker threads; 0 uses all hardware threads. Results do not depend on it.
@@ -70,6 +75,12 @@ struct BooleanOptions {
   /// Polygons: the core's raw convex pieces, as the paper emits them
   /// (T-junctions, one polygon per BSP piece).
   enum class Output { Triangles, Polygons } output = Output::Triangles;
+  /// Called at phase boundaries so callers can show progress on long runs
+  /// (the library itself never prints). Always called from the thread that
+  /// called boolean(), one call at a time, so it needs no locking of its own;
+  /// it should return quickly. An exception it throws propagates out of
+  /// boolean(). Empty: no calls.
+  ProgressCallback progress;
 };
 
 /// Where an output polygon came from.

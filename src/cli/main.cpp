@@ -1,10 +1,10 @@
 // The `ember` command line: exact mesh Booleans on files.
 //
 //   ember union|intersection|difference|xor A B [C ...] -o OUT
-//         [--min-k K] [--threads N] [--stats] [--allow-open] [--assume-solid] [--no-solid-check]
+//         [--min-k K] [--threads N] [--stats] [--allow-open] [--assume-solid] [--no-solid-check] [--quiet] [--polygons]
 //   ember demo [-o DIR] [--threads N]
 //
-// Formats follow the file extension (.obj .stl .ply .off). Errors print one
+// Formats follow the file extension (.obj .stl .ply .off .3mf). Errors print one
 // line on stderr and exit with 1 (2 for usage errors); no partial output file
 // is ever left behind (results are written to a temporary name and renamed).
 #include <CLI/CLI.hpp>
@@ -20,6 +20,8 @@
 #include "ember/error.hpp"
 #include "ember/io/mesh_io.hpp"
 #include "ember/shapes.hpp"
+#include "cli/operands.hpp"
+#include "cli/progress.hpp"
 
 namespace fs = std::filesystem;
 
@@ -98,6 +100,7 @@ struct BooleanArgs {
   bool assume_solid = false;
   bool no_solid_check = false;
   bool polygons = false;
+  bool quiet = false;
 };
 
 int run_boolean(ember::Operation op, const BooleanArgs& a) {
@@ -112,17 +115,19 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
     options.min_k = a.min_k;
   }
   ember::format_from_path(a.output);  // reject an unknown output extension before any work
-  std::vector<ember::Mesh> meshes;
-  meshes.reserve(a.inputs.size());
-  for (const std::string& in : a.inputs) meshes.push_back(ember::read_mesh(in));
+  const ember::cli::Operands operands = ember::cli::read_operands(a.inputs);
   ember::BooleanResult r;
   try {
-    r = ember::boolean(meshes, op, options);
+    // Destroyed (bar erased) before any warning or error is printed.
+    const auto progress = ember::cli::ProgressDisplay::on_terminal(!a.quiet);
+    if (progress) options.progress = progress->callback();
+    r = ember::boolean(operands.meshes, op, options);
   } catch (const ember::Error& e) {
-    throw ember::Error(name_operand(e.what(), a.inputs));
+    throw ember::Error(name_operand(e.what(), operands.names));
   }
-  for (const std::string& w : r.warnings)
-    std::fprintf(stderr, "ember: warning: %s\n", name_operand(w, a.inputs).c_str());
+  if (!a.quiet)
+    for (const std::string& w : r.warnings)
+      std::fprintf(stderr, "ember: warning: %s\n", name_operand(w, operands.names).c_str());
   write_atomically(r.mesh, a.output);
   if (a.stats) print_stats(r, operation_name(op));
   return 0;
@@ -144,7 +149,7 @@ int run_demo(const std::string& dir, int threads) {
     const ember::BooleanResult r = ember::boolean({torus, sphere}, op, options);
     const fs::path out = fs::path(dir) / (std::string(operation_name(op)) + ".obj");
     write_atomically(r.mesh, out);
-    std::printf("  %-13s -> %s: %zu polygons in %.1f ms (%d threads)\n", operation_name(op), out.c_str(),
+    std::printf("  %-13s -> %s: %zu triangles in %.1f ms (%d threads)\n", operation_name(op), out.c_str(),
                 r.stats.output_polygons, r.stats.time_ms, r.stats.threads);
   }
   return 0;
@@ -153,7 +158,7 @@ int run_demo(const std::string& dir, int threads) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"ember: exact mesh Booleans (EMBER). Formats by extension: .obj .stl .ply .off"};
+  CLI::App app{"ember: exact mesh Booleans (EMBER). Formats by extension: .obj .stl .ply .off .3mf"};
   app.require_subcommand(1);
   BooleanArgs args;
   struct Command {
@@ -170,7 +175,7 @@ int main(int argc, char** argv) {
   std::vector<std::pair<CLI::App*, ember::Operation>> subs;
   for (const Command& c : commands) {
     CLI::App* sub = app.add_subcommand(c.name, c.help);
-    sub->add_option("inputs", args.inputs, "Input meshes (two or more)")->required()->expected(2, -1);
+    sub->add_option("inputs", args.inputs, "Input meshes (two or more; each object of a 3MF file is one)")->required()->expected(2, -1);
     sub->add_option("-o,--output", args.output, "Output mesh; format from extension")->required();
     sub->add_option("--min-k", args.min_k, "union only: keep the solid inside at least K inputs")
         ->check(CLI::PositiveNumber);
@@ -178,6 +183,7 @@ int main(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber);
     sub->add_flag("--stats", args.stats, "Print one JSON object with timing and counts on stderr");
     sub->add_flag("--allow-open", args.allow_open, "Accept inputs that are not closed (warns)");
+    sub->add_flag("--quiet", args.quiet, "No warnings and no progress bar on stderr (errors are still printed)");
     sub->add_flag("--assume-solid", args.assume_solid,
                   "Promise every input is solid (closed, outward, no self-intersections, no nested or touching "
                   "components): skips the solid check; a false promise gives a wrong result");

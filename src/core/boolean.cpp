@@ -147,10 +147,18 @@ Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer&
   return mesh;
 }
 
+/// The progress hook, if any. Calls happen only between the parallel phases,
+/// on the calling thread, so the callback never runs concurrently with itself.
+/// The fractions are a fixed guess at each phase's share of a typical run.
+void report(const BooleanOptions& options, std::string_view phase, double fraction) {
+  if (options.progress) options.progress(phase, fraction);
+}
+
 }  // namespace
 
 BooleanResult boolean(std::span<const Mesh> operands, Operation op, const BooleanOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  report(options, "prepare", 0.0);
   if (operands.empty()) throw Error("boolean: no operands given; pass at least one mesh");
   if (options.threads < 0) throw Error("boolean: threads must be >= 0 (0 = all hardware threads)");
   if (!options.solid.empty() && options.solid.size() != operands.size())
@@ -291,19 +299,23 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     if (options.detect_solid) {
       // Operands not promised solid are proven solid (or not) exactly.
       for (std::size_t o = 0; o < operands.size(); ++o)
-        if (!ctx.solid[o] && open[o] == 0)
+        if (!ctx.solid[o] && open[o] == 0) {
+          report(options, "solid check", 0.1 + 0.1 * static_cast<double>(o) / static_cast<double>(operands.size()));
           arena.execute([&] {
             ctx.solid[o] = core::check_solid(root, grid, static_cast<std::uint32_t>(o)) == core::SolidVerdict::Solid;
           });
+        }
       grid = {};
     }
     for (const char s : ctx.solid) result.stats.solid_operands += s != 0;
     proved = std::chrono::steady_clock::now();
     result.stats.proof_ms = ms_between(setup_done, proved);
+    report(options, "solve", 0.2);
     arena.execute([&] { polys = core::solve(std::move(root), ctx); });
   }
   const auto solved = std::chrono::steady_clock::now();
   result.stats.solve_ms = ms_between(proved, solved);
+  report(options, "output", 0.9);
   if (options.output == BooleanOptions::Output::Polygons) {
     arena.execute([&] { result.mesh = export_mesh(polys, q, sources, result.provenance, result.stats.dropped_slivers); });
   } else {
@@ -331,6 +343,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   const auto end = std::chrono::steady_clock::now();
   result.stats.output_ms = ms_between(solved, end);
   result.stats.time_ms = ms_between(start, end);
+  report(options, "done", 1.0);
   return result;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <utility>
 
 #include "ember/error.hpp"
 #include "ember/io/mesh_io.hpp"
@@ -35,6 +36,13 @@ std::string read_file(const std::filesystem::path& path) {
   return data;
 }
 
+/// read_mesh returns one mesh; a 3MF file may hold several (one per build item).
+Mesh single_3mf_object(std::vector<Mesh> meshes, std::string_view name) {
+  if (meshes.size() == 1) return std::move(meshes.front());
+  throw Error(std::string(name) + ": the 3MF file holds " + std::to_string(meshes.size()) +
+              " objects (build items), not one; read them with read_meshes (the CLI takes each as an operand)");
+}
+
 }  // namespace
 
 MeshFormat format_from_path(const std::filesystem::path& path) {
@@ -45,8 +53,9 @@ MeshFormat format_from_path(const std::filesystem::path& path) {
   if (ext == ".stl") return MeshFormat::Stl;
   if (ext == ".off") return MeshFormat::Off;
   if (ext == ".ply") return MeshFormat::Ply;
+  if (ext == ".3mf") return MeshFormat::ThreeMf;
   throw Error(path.string() + ": unknown mesh file extension '" + path.extension().string() +
-              "' (supported: .obj, .stl, .off, .ply)");
+              "' (supported: .obj, .stl, .off, .ply, .3mf)");
 }
 
 Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name) {
@@ -55,6 +64,7 @@ Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name)
     case MeshFormat::Stl: return read_stl(bytes, name);
     case MeshFormat::Off: return read_off(bytes, name);
     case MeshFormat::Ply: return read_ply(bytes, name);
+    case MeshFormat::ThreeMf: return single_3mf_object(read_3mf(bytes, name), name);
   }
   throw Error(std::string(name) + ": invalid mesh format value");
 }
@@ -65,12 +75,22 @@ Mesh read_mesh(const std::filesystem::path& path) {
   return read_mesh(data, format, path.string());
 }
 
+std::vector<Mesh> read_meshes(const std::filesystem::path& path) {
+  const MeshFormat format = format_from_path(path);
+  const std::string data = read_file(path);
+  if (format == MeshFormat::ThreeMf) return read_3mf(data, path.string());
+  std::vector<Mesh> meshes;
+  meshes.push_back(read_mesh(data, format, path.string()));
+  return meshes;
+}
+
 std::string write_mesh(const Mesh& mesh, MeshFormat format) {
   switch (format) {
     case MeshFormat::Obj: return write_obj(mesh);
     case MeshFormat::Stl: return write_stl(mesh);
     case MeshFormat::Off: return write_off(mesh);
     case MeshFormat::Ply: return write_ply(mesh);
+    case MeshFormat::ThreeMf: return write_3mf(mesh);
   }
   throw Error("invalid mesh format value");
 }

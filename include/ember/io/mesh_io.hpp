@@ -1,27 +1,33 @@
 #pragma once
-// Reading and writing meshes in OBJ, STL (binary and ASCII), OFF and PLY.
+// Reading and writing meshes in OBJ, STL (binary and ASCII), OFF, PLY and 3MF.
 //
 // Readers take the whole file as bytes; `name` only appears in error messages.
 // Every malformed input ends in an ember::Error naming the file and the line
 // (text formats) or byte offset (binary formats) and what was wrong; a reader
 // never returns a mesh that silently differs from the file.
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "ember/mesh.hpp"
 
 namespace ember {
 
-enum class MeshFormat { Obj, Stl, Off, Ply };
+enum class MeshFormat { Obj, Stl, Off, Ply, ThreeMf };
 
 /// Format chosen by file extension (case-insensitive); throws ember::Error for
 /// an unknown extension, listing the supported ones.
 MeshFormat format_from_path(const std::filesystem::path& path);
 
 /// Reads a mesh file; the format follows the extension (STL ASCII/binary and
-/// PLY ascii/binary are told apart by content).
+/// PLY ascii/binary are told apart by content). A 3MF file must hold exactly
+/// one object; use read_meshes for several.
 Mesh read_mesh(const std::filesystem::path& path);
+/// Reads every mesh of a file: one per build item of a 3MF file, the single
+/// mesh of any other format.
+std::vector<Mesh> read_meshes(const std::filesystem::path& path);
 /// Writes a mesh; the format follows the extension (STL: binary, PLY: binary
 /// little endian). Throws ember::Error when the file cannot be written.
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path);
@@ -36,7 +42,11 @@ Mesh read_stl(std::string_view bytes, std::string_view name);
 Mesh read_off(std::string_view bytes, std::string_view name);
 /// PLY ascii, binary_little_endian or binary_big_endian with any properties.
 Mesh read_ply(std::string_view bytes, std::string_view name);
-/// Reads in-memory bytes in the given format.
+/// 3MF (through lib3mf): one mesh per build item, with the item's and its
+/// components' transforms applied. Coordinates are taken as they are, in the
+/// file's unit; colors, materials and other extensions are ignored.
+std::vector<Mesh> read_3mf(std::string_view bytes, std::string_view name);
+/// Reads in-memory bytes in the given format (3MF: exactly one object).
 Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name);
 
 /// OBJ with shortest round-trip decimal coordinates (reads back bit-exact).
@@ -47,6 +57,14 @@ std::string write_stl(const Mesh& mesh);
 std::string write_off(const Mesh& mesh);
 /// Binary little-endian PLY with double coordinates (reads back bit-exact).
 std::string write_ply(const Mesh& mesh);
+/// 3MF with one object and one build item, unit millimeter; faces
+/// fan-triangulated. lib3mf 1.x keeps coordinates as floats and writes them
+/// with 6 decimals, so they move by up to 1e-6 (in mm: 1 nm) — fine for
+/// printing; use OBJ, OFF or PLY for bit-exact results.
+std::string write_3mf(const Mesh& mesh);
+/// 3MF with one object and build item per mesh (read back by read_3mf as
+/// separate meshes, by the CLI as separate operands).
+std::string write_3mf(std::span<const Mesh> meshes);
 std::string write_mesh(const Mesh& mesh, MeshFormat format);
 
 }  // namespace ember

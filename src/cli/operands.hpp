@@ -1,0 +1,19 @@
+#pragma once
+// The CLI's operands: every input file gives one mesh, except a 3MF file with
+// several objects (build items), which gives one operand per object.
+#include <string>
+#include <vector>
+
+#include "ember/mesh.hpp"
+
+namespace ember::cli {
+
+struct Operands {
+  std::vector<Mesh> meshes;
+  /// Per mesh, how the user knows it: the path, or "path (object i of n)".
+  std::vector<std::string> names;
+};
+
+Operands read_operands(const std::vector<std::string>& paths);
+
+}  // namespace ember::cli

@@ -1,0 +1,233 @@
+// The Python module `ember`: exact mesh Booleans and mesh files over numpy.
+//
+//   import ember
+//   v, f = ember.difference((v1, f1), trimesh_mesh, threads=0)
+//
+// A mesh is a (vertices, faces) pair: float64 (n, 3) and integer (m, k >= 3)
+// arrays, or any object with .vertices and .faces (trimesh.Trimesh). Results
+// are (vertices float64 (n, 3), faces int64 (m, 3)) tuples: ember's convex
+// output polygons are fan-triangulated, which is exact for convex polygons.
+// Errors are ember.Error (a ValueError) with the library's message.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ember/boolean.hpp"
+#include "ember/error.hpp"
+#include "ember/io/mesh_io.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+std::string shape_of(const py::array& a) {
+  std::string s = "(";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+/// One operand from Python: a (vertices, faces) pair or an object with
+/// .vertices and .faces. `what` names it in error messages.
+ember::Mesh to_mesh(py::handle obj, const std::string& what) {
+  py::object vertices, faces;
+  if ((py::isinstance<py::tuple>(obj) || py::isinstance<py::list>(obj)) && py::len(obj) == 2) {
+    vertices = obj[py::int_(0)];
+    faces = obj[py::int_(1)];
+  } else if (py::hasattr(obj, "vertices") && py::hasattr(obj, "faces")) {
+    vertices = obj.attr("vertices");
+    faces = obj.attr("faces");
+  } else {
+    throw py::type_error(what + ": expected a (vertices, faces) pair or an object with .vertices and .faces "
+                                "(e.g. trimesh.Trimesh), got " + std::string(py::str(py::type::of(obj))));
+  }
+  const auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(vertices);
+  if (!v || v.ndim() != 2 || v.shape(1) != 3)
+    throw ember::Error(what + ": vertices must be a float array of shape (n, 3)" +
+                       (v ? ", got shape " + shape_of(v) : std::string()));
+  const py::array f_any = py::array::ensure(faces);
+  if (!f_any || (f_any.size() > 0 && f_any.dtype().kind() != 'i' && f_any.dtype().kind() != 'u'))
+    throw ember::Error(what + ": faces must be an integer array of shape (m, 3) (or (m, k) polygons)");
+  const auto f = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(f_any);
+  if (f.ndim() != 2 || (f.shape(0) > 0 && f.shape(1) < 3))
+    throw ember::Error(what + ": faces must have shape (m, 3) (or (m, k >= 3) polygons), got shape " + shape_of(f));
+
+  ember::Mesh m;
+  const auto vr = v.unchecked<2>();
+  m.vertices.resize(static_cast<std::size_t>(v.shape(0)));
+  for (py::ssize_t i = 0; i < v.shape(0); ++i) m.vertices[static_cast<std::size_t>(i)] = {vr(i, 0), vr(i, 1), vr(i, 2)};
+  const auto fr = f.unchecked<2>();
+  const py::ssize_t k = f.shape(1);
+  m.indices.reserve(static_cast<std::size_t>(f.shape(0) * k));
+  m.face_offsets.reserve(static_cast<std::size_t>(f.shape(0)) + 1);
+  for (py::ssize_t i = 0; i < f.shape(0); ++i) {
+    for (py::ssize_t j = 0; j < k; ++j) {
+      const std::int64_t id = fr(i, j);
+      if (id < 0 || id >= v.shape(0))
+        throw ember::Error(what + ": face " + std::to_string(i) + " uses vertex index " + std::to_string(id) +
+                           ", but there are " + std::to_string(v.shape(0)) + " vertices");
+      m.indices.push_back(static_cast<std::uint32_t>(id));
+    }
+    m.face_offsets.push_back(static_cast<std::uint32_t>(m.indices.size()));
+  }
+  return m;
+}
+
+/// (vertices, faces) arrays of a mesh, polygons fan-triangulated; `face_of`
+/// gets, per output triangle, the polygon it came from (for provenance).
+py::tuple to_arrays(const ember::Mesh& m, std::vector<std::size_t>* face_of = nullptr) {
+  py::array_t<double> v({static_cast<py::ssize_t>(m.vertices.size()), py::ssize_t{3}});
+  auto vw = v.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < m.vertices.size(); ++i) {
+    vw(i, 0) = m.vertices[i].x;
+    vw(i, 1) = m.vertices[i].y;
+    vw(i, 2) = m.vertices[i].z;
+  }
+  py::array_t<std::int64_t> f({static_cast<py::ssize_t>(m.triangle_count()), py::ssize_t{3}});
+  auto fw = f.mutable_unchecked<2>();
+  py::ssize_t t = 0;
+  for (std::size_t p = 0; p < m.face_count(); ++p) {
+    const auto face = m.face(p);
+    for (std::size_t i = 1; i + 1 < face.size(); ++i, ++t) {
+      fw(t, 0) = face[0];
+      fw(t, 1) = face[i];
+      fw(t, 2) = face[i + 1];
+      if (face_of) face_of->push_back(p);
+    }
+  }
+  return py::make_tuple(v, f);
+}
+
+py::dict stats_dict(const ember::BooleanStats& s) {
+  py::dict d;
+  d["input_triangles"] = s.input_triangles;
+  d["dropped_degenerate"] = s.dropped_degenerate;
+  d["output_polygons"] = s.output_polygons;
+  d["dropped_slivers"] = s.dropped_slivers;
+  d["solid_operands"] = s.solid_operands;
+  d["time_ms"] = s.time_ms;
+  d["threads"] = s.threads;
+  return d;
+}
+
+/// union/intersection/difference/xor(*meshes, **options).
+py::tuple run_boolean(ember::Operation op, const py::args& meshes, const py::kwargs& kwargs) {
+  ember::BooleanOptions options;
+  bool want_provenance = false, want_stats = false;
+  for (const auto& [key, value] : kwargs) {
+    const std::string k = py::str(key);
+    if (k == "threads") options.threads = value.cast<int>();
+    else if (k == "allow_open") options.allow_open = value.cast<bool>();
+    else if (k == "assume_solid") options.all_solid = value.cast<bool>();
+    else if (k == "detect_solid") options.detect_solid = value.cast<bool>();
+    else if (k == "return_provenance") want_provenance = value.cast<bool>();
+    else if (k == "return_stats") want_stats = value.cast<bool>();
+    else if (k == "min_k" && op == ember::Operation::Union) {
+      if (!value.is_none()) {
+        op = ember::Operation::AtLeastK;
+        options.min_k = value.cast<int>();
+      }
+    } else {
+      throw py::type_error("unexpected keyword argument '" + k +
+                           "' (options: threads, allow_open, assume_solid, detect_solid, return_provenance, "
+                           "return_stats; union also min_k)");
+    }
+  }
+  std::vector<ember::Mesh> operands;
+  operands.reserve(meshes.size());
+  for (std::size_t i = 0; i < meshes.size(); ++i) operands.push_back(to_mesh(meshes[i], "operand " + std::to_string(i)));
+
+  ember::BooleanResult r;
+  {
+    // The exact core runs on its own threads and touches no Python object.
+    py::gil_scoped_release release;
+    r = ember::boolean(operands, op, options);
+  }
+  for (const std::string& w : r.warnings)
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 1) != 0) throw py::error_already_set();
+
+  std::vector<std::size_t> face_of;
+  py::tuple arrays = to_arrays(r.mesh, &face_of);
+  py::list out;
+  out.append(arrays[0]);
+  out.append(arrays[1]);
+  if (want_provenance) {
+    // Per output triangle: [operand index, face index within that operand].
+    py::array_t<std::int64_t> prov({static_cast<py::ssize_t>(face_of.size()), py::ssize_t{2}});
+    auto pw = prov.mutable_unchecked<2>();
+    for (std::size_t t = 0; t < face_of.size(); ++t) {
+      pw(t, 0) = r.provenance[face_of[t]].operand;
+      pw(t, 1) = r.provenance[face_of[t]].face;
+    }
+    out.append(prov);
+  }
+  if (want_stats) out.append(stats_dict(r.stats));
+  return py::tuple(out);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(ember, m) {
+  m.doc() = "ember: exact mesh Booleans (EMBER). Meshes are (vertices, faces) numpy pairs or trimesh-like objects.";
+  m.attr("__version__") = "0.1.0";
+  py::register_exception<ember::Error>(m, "Error", PyExc_ValueError);
+
+  const char* options_doc =
+      "(*meshes, threads=0, allow_open=False, assume_solid=False, detect_solid=True, return_provenance=False, "
+      "return_stats=False) -> (vertices, faces[, provenance][, stats])\n\n"
+      "meshes: (vertices (n,3) float, faces (m,3) int) pairs or objects with .vertices/.faces.\n"
+      "Returns float64 (n,3) vertices and int64 (m,3) triangles; provenance (m,2) int64 gives\n"
+      "[operand, face] per triangle; stats is a dict. Raises ember.Error on bad input.";
+  struct Op {
+    const char* name;
+    ember::Operation op;
+    const char* what;
+  };
+  for (const Op& o : {Op{"union", ember::Operation::Union, "Inside any mesh (min_k=K: inside at least K meshes). "},
+                      Op{"intersection", ember::Operation::Intersection, "Inside every mesh. "},
+                      Op{"difference", ember::Operation::Difference, "Inside the first mesh and outside all others. "},
+                      Op{"xor", ember::Operation::Xor, "Inside an odd number of meshes. "}}) {
+    const ember::Operation op = o.op;
+    m.def(o.name, [op](const py::args& a, const py::kwargs& k) { return run_boolean(op, a, k); },
+          (std::string(o.what) + options_doc).c_str());
+  }
+
+  m.def(
+      "read",
+      [](const std::string& path) {
+        ember::Mesh mesh;
+        {
+          py::gil_scoped_release release;
+          mesh = ember::read_mesh(path);
+        }
+        return to_arrays(mesh);
+      },
+      py::arg("path"),
+      "read(path) -> (vertices, faces): one mesh; the format follows the extension "
+      "(.obj .stl .off .ply .3mf). Polygons are fan-triangulated.");
+  m.def(
+      "read_all",
+      [](const std::string& path) {
+        std::vector<ember::Mesh> meshes;
+        {
+          py::gil_scoped_release release;
+          meshes = ember::read_meshes(path);
+        }
+        py::list out;
+        for (const ember::Mesh& mesh : meshes) out.append(to_arrays(mesh));
+        return out;
+      },
+      py::arg("path"), "read_all(path) -> [(vertices, faces), ...]: every object of a 3MF file (one per build item).");
+  m.def(
+      "write",
+      [](const std::string& path, py::handle mesh) {
+        const ember::Mesh m = to_mesh(mesh, "mesh");
+        py::gil_scoped_release release;
+        ember::write_mesh(m, path);
+      },
+      py::arg("path"), py::arg("mesh"),
+      "write(path, mesh): writes a (vertices, faces) pair or trimesh-like object; the format follows the extension.");
+}
