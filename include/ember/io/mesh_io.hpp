@@ -2,12 +2,14 @@
 // Reading and writing meshes in OBJ, STL (binary and ASCII), OFF and PLY.
 //
 // Readers take the whole file as bytes; `name` only appears in error messages.
+// Text headers may start with a UTF-8 byte-order mark.
 // Every malformed input ends in an ember::Error naming the file and the line
 // (text formats) or byte offset (binary formats) and what was wrong; a reader
 // never returns a mesh that silently differs from the file.
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "ember/mesh.hpp"
 
@@ -22,6 +24,9 @@ MeshFormat format_from_path(const std::filesystem::path& path);
 /// Reads a mesh file; the format follows the extension (STL ASCII/binary and
 /// PLY ascii/binary are told apart by content).
 Mesh read_mesh(const std::filesystem::path& path);
+/// As above; tolerated oddities of the file (an ASCII STL without 'endsolid')
+/// are appended to `warnings` as "FILE: what" instead of being an error.
+Mesh read_mesh(const std::filesystem::path& path, std::vector<std::string>* warnings);
 /// Writes a mesh; the format follows the extension (STL: binary, PLY: binary
 /// little endian). Throws ember::Error when the file cannot be written.
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path);
@@ -30,14 +35,17 @@ void write_mesh(const Mesh& mesh, const std::filesystem::path& path);
 /// texture, normal, group, material and other statements are ignored.
 Mesh read_obj(std::string_view bytes, std::string_view name);
 /// STL, binary or ASCII (detected by size and content). STL stores a triangle
-/// soup; identical positions are merged into one vertex (+0.0 == -0.0).
-Mesh read_stl(std::string_view bytes, std::string_view name);
+/// soup; identical positions are merged into one vertex (+0.0 == -0.0). An
+/// ASCII file that ends without 'endsolid' is read (other tools write such
+/// files) and noted in `warnings` when given.
+Mesh read_stl(std::string_view bytes, std::string_view name, std::vector<std::string>* warnings = nullptr);
 /// OFF with optional ST/C/N prefixes in the header and per-face colors.
 Mesh read_off(std::string_view bytes, std::string_view name);
 /// PLY ascii, binary_little_endian or binary_big_endian with any properties.
 Mesh read_ply(std::string_view bytes, std::string_view name);
-/// Reads in-memory bytes in the given format.
-Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name);
+/// Reads in-memory bytes in the given format (warnings: as for read_stl).
+Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name,
+               std::vector<std::string>* warnings = nullptr);
 
 /// OBJ with shortest round-trip decimal coordinates (reads back bit-exact).
 std::string write_obj(const Mesh& mesh);
