@@ -159,7 +159,8 @@ bool prove_solid(const core::Subproblem& root, const core::GridTriangles& grid, 
     case core::SolidVerdict::Unclassified: report.solid = SolidStatus::Undecided; break;
   }
   result.warnings.push_back(operand_name(o) + ": " + describe_solid_check(report) +
-                            "; it takes the general path, which is exact but slower (--no-solid-check skips the check)");
+                            "; it takes the general path, which is exact but slower "
+                            "(CLI: --no-solid-check skips the check)");
   return false;
 }
 

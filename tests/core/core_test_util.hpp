@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "ember/boolean.hpp"
@@ -13,6 +14,17 @@
 #include "support/shapes.hpp"
 
 namespace ember::test {
+
+/// The message of the ember::Error thrown by f ("" if none was thrown).
+template <class F>
+std::string error_message(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
 
 /// Runs the Boolean and checks the structural invariants of the result:
 /// faces have >= 3 vertices, non-zero area and (with convex_tol >= 0) are

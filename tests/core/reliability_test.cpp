@@ -12,16 +12,6 @@ namespace {
 
 using Op = Operation;
 
-template <class F>
-std::string error_message(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 // ---- item 1: an operand the grid cannot hold is an error, never a wrong answer ----
