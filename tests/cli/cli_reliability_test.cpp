@@ -270,3 +270,22 @@ TEST(CliSolidCheck, StatsAndWarningSayWhyAnOperandIsNotSolid) {
 }
 
 }  // namespace
+
+// ---- item 10: concave OBJ n-gons pass the solid check -------------------------------
+
+TEST(CliSolidCheck, ConcaveObjPolygonsAreTriangulatedBeforeTheProof) {
+  TempDir dir;
+  // An L-shaped prism whose caps are single concave hexagons.
+  write_file(dir / "l.obj",
+             "v 0 0 0\nv 3 0 0\nv 3 1 0\nv 1 1 0\nv 1 3 0\nv 0 3 0\n"
+             "v 0 0 1\nv 3 0 1\nv 3 1 1\nv 1 1 1\nv 1 3 1\nv 0 3 1\n"
+             "f 6 5 4 3 2 1\nf 7 8 9 10 11 12\n"
+             "f 1 2 8 7\nf 2 3 9 8\nf 3 4 10 9\nf 4 5 11 10\nf 5 6 12 11\nf 6 1 7 12\n");
+  write_input(dir, "b.obj", box({2, 0, 0}, {4, 1, 1}));
+  const RunResult r = run_cli(dir, {"union", "l.obj", "b.obj", "-o", "o.obj", "--stats"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_EQ(lines_of(r.err).size(), 1u) << "no warnings expected\n" << describe(r);
+  EXPECT_EQ(stats_value(r.err, "solid_operands"), "2") << describe(r);
+  EXPECT_TRUE(has(stats_value(r.err, "solid_check"), "l.obj: proven solid")) << describe(r);
+  EXPECT_EQ(ember::test::volume(ember::read_mesh(dir / "o.obj")), 6);
+}
