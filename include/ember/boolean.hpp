@@ -89,9 +89,35 @@ struct Provenance {
   std::uint32_t face;     ///< face index within that operand
 };
 
+/// What the solid check (BooleanOptions::detect_solid) found for one operand.
+enum class SolidStatus {
+  NotChecked,        ///< detect_solid off, or no triangles left on the grid
+  Promised,          ///< BooleanOptions::solid / all_solid: taken on trust
+  Proven,            ///< proven solid: takes the fast path
+  Open,              ///< not closed (OperandReport::open_edges): never solid
+  SelfIntersecting,  ///< triangles meet beyond shared vertices/edges (OperandReport::self_intersecting_pairs)
+  Misoriented,       ///< components inverted or nested (OperandReport::misoriented_components)
+  Undecided,         ///< beyond the proof's work budget or no trace path: treated as not solid
+};
+
+/// Per operand: what quantization did to it and what the solid check found.
+struct OperandReport {
+  std::size_t triangles = 0;            ///< after fan triangulation of its faces
+  std::size_t collapsed_triangles = 0;  ///< had area in the input, degenerate on the grid (dropped)
+  std::size_t flipped_triangles = 0;    ///< the grid reversed their orientation
+  SolidStatus solid = SolidStatus::NotChecked;
+  std::size_t open_edges = 0;               ///< edges not matched by an opposite edge
+  std::size_t self_intersecting_pairs = 0;  ///< pairs found (the search stops at kMaxReportedPairs)
+  std::size_t misoriented_components = 0;   ///< components with winding number != 0 in front
+  static constexpr std::size_t kMaxReportedPairs = 1000;
+};
+
 struct BooleanStats {
   std::size_t input_triangles = 0;
-  std::size_t dropped_degenerate = 0;  ///< triangles that collapsed on the integer grid
+  std::size_t dropped_degenerate = 0;  ///< triangles degenerate on the integer grid (collapsed or already degenerate)
+  std::size_t collapsed_triangles = 0;  ///< of those, triangles with area in the input (sum over operands)
+  std::size_t flipped_triangles = 0;    ///< triangles whose orientation the grid reversed (sum over operands)
+  double grid_step = 0;                 ///< quantization grid spacing in the caller's units
   std::size_t output_polygons = 0;
   std::size_t dropped_slivers = 0;  ///< exact output slivers whose rounded vertices have zero area
   std::size_t solid_operands = 0;  ///< operands treated as solid (promised or proven)
@@ -102,6 +128,7 @@ struct BooleanStats {
   std::size_t tjunctions_resolved = 0, collinear_removed = 0, regions = 0, fallback_regions = 0;
   /// Output triangles whose rounded (double) corners have zero area.
   std::size_t rounded_degenerate = 0;
+  std::vector<OperandReport> operands;  ///< one per operand
   double time_ms = 0;  ///< quantization + core + export
   /// Phases of time_ms: setup (validation, quantization, triangles, closedness),
   /// solid proof, the exact core, and output (mesh stage or polygon export).
@@ -124,6 +151,10 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
 inline BooleanResult boolean(std::initializer_list<Mesh> operands, Operation op, const BooleanOptions& options = {}) {
   return boolean(std::span<const Mesh>(operands.begin(), operands.size()), op, options);
 }
+
+/// The solid check's finding in words: "proven solid", "not solid: self-intersecting
+/// (3 triangle pairs meet ...)", ... (for warnings and reports).
+std::string describe_solid_check(const OperandReport& report);
 
 /// The indicator function of an operation over n operands.
 Indicator indicator_for(Operation op, std::size_t operands, int min_k = 1);

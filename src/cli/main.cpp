@@ -3,6 +3,7 @@
 //   ember union|intersection|difference|xor A B [C ...] -o OUT
 //         [--min-k K] [--threads N] [--stats] [--allow-open] [--assume-solid] [--no-solid-check] [--quiet] [--polygons]
 //   ember demo [-o DIR] [--threads N]
+//   ember --version
 //
 // Formats follow the file extension (.obj .stl .ply .off .3mf). Errors print one
 // line on stderr and exit with 1 (2 for usage errors); no partial output file
@@ -12,7 +13,6 @@
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -22,10 +22,15 @@
 #include "ember/shapes.hpp"
 #include "cli/operands.hpp"
 #include "cli/progress.hpp"
+#include "cli/output_file.hpp"
+#include "cli/stats.hpp"
+#include "cli/usage.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
+
+constexpr const char* kThreadsRange = "0 (all cores) or a number of threads up to 65536";
 
 const char* operation_name(ember::Operation op) {
   switch (op) {
@@ -38,44 +43,9 @@ const char* operation_name(ember::Operation op) {
   return "?";
 }
 
-/// Writes atomically: a temporary file in the same directory, then rename.
+/// Writes a mesh in the format of out's extension (atomically, privately).
 void write_atomically(const ember::Mesh& mesh, const fs::path& out) {
-  const ember::MeshFormat format = ember::format_from_path(out);
-  const std::string bytes = ember::write_mesh(mesh, format);
-  fs::path tmp = out;
-  tmp += ".ember-tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw ember::Error(out.string() + ": cannot open for writing");
-    f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    f.close();
-    if (!f) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw ember::Error(out.string() + ": write failed (disk full?)");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, out, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw ember::Error(out.string() + ": cannot move the result into place: " + ec.message());
-  }
-}
-
-void print_stats(const ember::BooleanResult& r, const char* op) {
-  std::fprintf(stderr,
-               "{\"operation\": \"%s\", \"input_triangles\": %zu, \"dropped_degenerate\": %zu, "
-               "\"output_polygons\": %zu, \"output_vertices\": %zu, \"solid_operands\": %zu, "
-               "\"tjunctions_resolved\": %zu, \"collinear_removed\": %zu, \"regions\": %zu, "
-               "\"fallback_regions\": %zu, \"rounded_degenerate\": %zu, \"time_ms\": %.3f, "
-               "\"setup_ms\": %.3f, \"proof_ms\": %.3f, \"solve_ms\": %.3f, \"output_ms\": %.3f, "
-               "\"threads\": %d}\n",
-               op, r.stats.input_triangles, r.stats.dropped_degenerate, r.stats.output_polygons,
-               r.stats.output_vertices, r.stats.solid_operands, r.stats.tjunctions_resolved,
-               r.stats.collinear_removed, r.stats.regions, r.stats.fallback_regions, r.stats.rounded_degenerate,
-               r.stats.time_ms, r.stats.setup_ms, r.stats.proof_ms, r.stats.solve_ms, r.stats.output_ms,
-               r.stats.threads);
+  ember::cli::write_file_atomically(ember::write_mesh(mesh, ember::format_from_path(out)), out);
 }
 
 /// The library names inputs "operand i"; the user knows them by file name.
@@ -93,8 +63,8 @@ std::string name_operand(const std::string& msg, const std::vector<std::string>&
 struct BooleanArgs {
   std::vector<std::string> inputs;
   std::string output;
-  int min_k = 0;
-  int threads = 0;
+  std::string min_k;    ///< as given (checked after parsing: usage.hpp)
+  std::string threads = "0";
   bool stats = false;
   bool allow_open = false;
   bool assume_solid = false;
@@ -103,19 +73,31 @@ struct BooleanArgs {
   bool quiet = false;
 };
 
-int run_boolean(ember::Operation op, const BooleanArgs& a) {
+/// Options from the command line; usage errors (exit 2) name the option and range.
+ember::BooleanOptions boolean_options(ember::Operation& op, const BooleanArgs& a) {
   ember::BooleanOptions options;
-  options.threads = a.threads;
+  options.threads = ember::cli::parse_int_option("--threads", a.threads, 0, 1 << 16, kThreadsRange);
   options.allow_open = a.allow_open;
   options.all_solid = a.assume_solid;
   options.detect_solid = !a.no_solid_check;
   if (a.polygons) options.output = ember::BooleanOptions::Output::Polygons;
-  if (a.min_k > 0) {  // main() allows --min-k with union only
-    op = ember::Operation::AtLeastK;
-    options.min_k = a.min_k;
-  }
+  if (a.min_k.empty()) return options;
+  const int n = static_cast<int>(a.inputs.size());
+  const std::string range = "K from 1 to the number of inputs (" + std::to_string(n) + ")";
+  if (op != ember::Operation::Union)
+    throw ember::cli::UsageError("--min-k applies to 'union' only (the solid inside at least K inputs); " + range);
+  options.min_k = ember::cli::parse_int_option("--min-k", a.min_k, 1, n, range);
+  op = ember::Operation::AtLeastK;
+  return options;
+}
+
+int run_boolean(ember::Operation op, const BooleanArgs& a) {
+  ember::BooleanOptions options = boolean_options(op, a);
   ember::format_from_path(a.output);  // reject an unknown output extension before any work
-  const ember::cli::Operands operands = ember::cli::read_operands(a.inputs);
+  std::vector<std::string> read_warnings;
+  const ember::cli::Operands operands = ember::cli::read_operands(a.inputs, &read_warnings);
+  if (!a.quiet)
+    for (const std::string& w : read_warnings) std::fprintf(stderr, "ember: warning: %s\n", w.c_str());
   ember::BooleanResult r;
   try {
     // Destroyed (bar erased) before any warning or error is printed.
@@ -129,7 +111,7 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
     for (const std::string& w : r.warnings)
       std::fprintf(stderr, "ember: warning: %s\n", name_operand(w, operands.names).c_str());
   write_atomically(r.mesh, a.output);
-  if (a.stats) print_stats(r, operation_name(op));
+  if (a.stats) ember::cli::print_stats(r, operation_name(op), operands.names);
   return 0;
 }
 
@@ -177,10 +159,8 @@ int main(int argc, char** argv) {
     CLI::App* sub = app.add_subcommand(c.name, c.help);
     sub->add_option("inputs", args.inputs, "Input meshes (two or more; each object of a 3MF file is one)")->required()->expected(2, -1);
     sub->add_option("-o,--output", args.output, "Output mesh; format from extension")->required();
-    sub->add_option("--min-k", args.min_k, "union only: keep the solid inside at least K inputs")
-        ->check(CLI::PositiveNumber);
-    sub->add_option("--threads", args.threads, "Worker threads (0 = all cores; results are identical)")
-        ->check(CLI::NonNegativeNumber);
+    sub->add_option("--min-k", args.min_k, "union only: keep the solid inside at least K inputs (1..inputs)");
+    sub->add_option("--threads", args.threads, "Worker threads (0 = all cores; results are identical)");
     sub->add_flag("--stats", args.stats, "Print one JSON object with timing and counts on stderr");
     sub->add_flag("--allow-open", args.allow_open, "Accept inputs that are not closed (warns)");
     sub->add_flag("--quiet", args.quiet, "No warnings and no progress bar on stderr (errors are still printed)");
@@ -196,10 +176,12 @@ int main(int argc, char** argv) {
     subs.emplace_back(sub, c.op);
   }
   std::string demo_dir = "ember-demo";
-  int demo_threads = 0;
+  std::string demo_threads = "0";
   CLI::App* demo = app.add_subcommand("demo", "Run all operations on two built-in solids, write OBJ files");
   demo->add_option("-o,--output", demo_dir, "Directory for the demo's meshes")->capture_default_str();
-  demo->add_option("--threads", demo_threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  demo->add_option("--threads", demo_threads, "Worker threads (0 = all cores)");
+  app.set_version_flag("--version", std::string("ember ") + EMBER_VERSION);
+  ember::cli::install_cleanup_handlers();
 
   try {
     app.parse(argc, argv);
@@ -209,15 +191,13 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    if (demo->parsed()) return run_demo(demo_dir, demo_threads);
-    for (const auto& [sub, op] : subs) {
-      if (!sub->parsed()) continue;
-      if (args.min_k > 0 && op != ember::Operation::Union) {
-        std::fprintf(stderr, "ember: --min-k applies to 'union' only (the solid inside at least K inputs)\n");
-        return 2;
-      }
-      return run_boolean(op, args);
-    }
+    if (demo->parsed())
+      return run_demo(demo_dir, ember::cli::parse_int_option("--threads", demo_threads, 0, 1 << 16, kThreadsRange));
+    for (const auto& [sub, op] : subs)
+      if (sub->parsed()) return run_boolean(op, args);
+  } catch (const ember::cli::UsageError& e) {
+    std::fprintf(stderr, "ember: %s (see 'ember --help')\n", e.what());
+    return 2;
   } catch (const ember::Error& e) {
     std::fprintf(stderr, "ember: %s\n", e.what());
     return 1;

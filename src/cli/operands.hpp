@@ -14,6 +14,6 @@ struct Operands {
   std::vector<std::string> names;
 };
 
-Operands read_operands(const std::vector<std::string>& paths);
+Operands read_operands(const std::vector<std::string>& paths, std::vector<std::string>* warnings = nullptr);
 
 }  // namespace ember::cli

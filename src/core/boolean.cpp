@@ -16,6 +16,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/grid_input.hpp"
 #include "core/indicator.hpp"
 #include "core/mesh/mesh_output.hpp"
 #include "core/solve.hpp"
@@ -154,6 +155,27 @@ void report(const BooleanOptions& options, std::string_view phase, double fracti
   if (options.progress) options.progress(phase, fraction);
 }
 
+/// Runs the solid proof for closed operand o, records the finding in the
+/// result's report and, when it fails, warns why (it changes path and time).
+bool prove_solid(const core::Subproblem& root, const core::GridTriangles& grid, std::size_t o, BooleanResult& result) {
+  OperandReport& report = result.stats.operands[o];
+  if (report.open_edges > 0) return false;  // SolidStatus::Open, already warned about (allow_open)
+  const core::SolidFinding f = core::check_solid(root, grid, static_cast<std::uint32_t>(o));
+  report.self_intersecting_pairs = f.self_intersecting_pairs;
+  report.misoriented_components = f.misoriented_components;
+  switch (f.verdict) {
+    case core::SolidVerdict::Solid: report.solid = SolidStatus::Proven; return true;
+    case core::SolidVerdict::SelfIntersecting: report.solid = SolidStatus::SelfIntersecting; break;
+    case core::SolidVerdict::WrongWinding: report.solid = SolidStatus::Misoriented; break;
+    case core::SolidVerdict::TooComplex:
+    case core::SolidVerdict::Unclassified: report.solid = SolidStatus::Undecided; break;
+  }
+  result.warnings.push_back(operand_name(o) + ": " + describe_solid_check(report) +
+                            "; it takes the general path, which is exact but slower "
+                            "(CLI: --no-solid-check skips the check)");
+  return false;
+}
+
 }  // namespace
 
 BooleanResult boolean(std::span<const Mesh> operands, Operation op, const BooleanOptions& options) {
@@ -181,38 +203,19 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   result.stats.threads = threads;
   tbb::task_arena arena(threads);
 
-  // Fan-triangulate every face on the grid (serial: cheap, fixes the order).
-  struct GridTriangle {
-    std::array<IntPoint, 3> p;
-    Source source;
-  };
-  std::vector<GridTriangle> triangles;
-  std::vector<std::size_t> operand_begin;
-  std::array<std::int64_t, 3> lo{Quantizer::kLimit, Quantizer::kLimit, Quantizer::kLimit};
-  std::array<std::int64_t, 3> hi{-Quantizer::kLimit, -Quantizer::kLimit, -Quantizer::kLimit};
-  for (std::size_t o = 0; o < operands.size(); ++o) {
-    const Mesh& m = operands[o];
-    operand_begin.push_back(triangles.size());
-    std::vector<IntPoint> grid(m.vertices.size());
-    std::vector<char> done(m.vertices.size(), 0);
-    for (const std::uint32_t v : m.indices)
-      if (!done[v]) {
-        grid[v] = q.quantize(m.vertices[v]);
-        done[v] = 1;
-        const std::int64_t c[3] = {grid[v].x, grid[v].y, grid[v].z};
-        for (int a = 0; a < 3; ++a) {
-          lo[a] = std::min(lo[a], c[a]);
-          hi[a] = std::max(hi[a], c[a]);
-        }
-      }
-    for (std::size_t f = 0; f < m.face_count(); ++f) {
-      const auto face = m.face(f);
-      for (std::size_t i = 1; i + 1 < face.size(); ++i)
-        triangles.push_back({{grid[face[0]], grid[face[i]], grid[face[i + 1]]},
-                             {static_cast<std::uint32_t>(o), static_cast<std::uint32_t>(f)}});
-    }
+  // Every face triangulated on the grid (serial: cheap, fixes the order).
+  core::GridInput gi = core::to_grid(operands, q);
+  std::vector<core::GridTriangle>& triangles = gi.triangles;
+  const std::vector<std::size_t>& operand_begin = gi.operand_begin;
+  const std::array<std::int64_t, 3>& lo = gi.lo;
+  const std::array<std::int64_t, 3>& hi = gi.hi;
+  result.stats.grid_step = q.grid_spacing();
+  result.stats.operands.resize(operands.size());
+  core::audit_quantization(operands, gi, q, result.stats.operands, result.warnings);
+  for (const OperandReport& r : result.stats.operands) {
+    result.stats.collapsed_triangles += r.collapsed_triangles;
+    result.stats.flipped_triangles += r.flipped_triangles;
   }
-  operand_begin.push_back(triangles.size());
   result.stats.input_triangles = triangles.size();
 
   std::vector<std::size_t> open(operands.size(), 0);
@@ -238,14 +241,16 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
                           const auto& t = triangles[i].p;
                           std::optional<Polygon> poly = make_triangle(t[0], t[1], t[2]);
                           if (!poly) continue;
-                          built[i].emplace(core::SoupPolygon{std::move(*poly), 0, triangles[i].source.operand, {}, {}});
+                          built[i].emplace(core::SoupPolygon{std::move(*poly), 0, triangles[i].operand, {}, {}});
                           core::update_bounds(*built[i]);
                         }
                       });
     closedness.wait();
   });
   for (std::size_t o = 0; o < operands.size(); ++o) {
+    result.stats.operands[o].open_edges = open[o];
     if (open[o] == 0) continue;
+    result.stats.operands[o].solid = SolidStatus::Open;
     const std::string msg = operand_name(o) + ": not closed: " + std::to_string(open[o]) +
                             " edges are not matched by an opposite edge, so inside/outside is undefined";
     if (!options.allow_open) throw Error(msg + "; repair the mesh or allow open inputs (CLI: --allow-open)");
@@ -263,7 +268,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       continue;
     }
     built[i]->id = static_cast<std::uint32_t>(sources.size());
-    sources.push_back(triangles[i].source);
+    sources.push_back({triangles[i].operand, triangles[i].face});
     if (options.detect_solid) {
       grid.corners.push_back(triangles[i].p);
       grid.vertex_ids.push_back(vertex_ids[i]);
@@ -296,14 +301,14 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       };
     ctx.solid.assign(operands.size(), options.all_solid ? 1 : 0);
     for (std::size_t i = 0; i < options.solid.size(); ++i) ctx.solid[i] |= options.solid[i] ? 1 : 0;
+    for (std::size_t o = 0; o < operands.size(); ++o)
+      if (ctx.solid[o]) result.stats.operands[o].solid = SolidStatus::Promised;
     if (options.detect_solid) {
       // Operands not promised solid are proven solid (or not) exactly.
       for (std::size_t o = 0; o < operands.size(); ++o)
-        if (!ctx.solid[o] && open[o] == 0) {
+        if (!ctx.solid[o]) {
           report(options, "solid check", 0.1 + 0.1 * static_cast<double>(o) / static_cast<double>(operands.size()));
-          arena.execute([&] {
-            ctx.solid[o] = core::check_solid(root, grid, static_cast<std::uint32_t>(o)) == core::SolidVerdict::Solid;
-          });
+          arena.execute([&] { ctx.solid[o] = prove_solid(root, grid, o, result); });
         }
       grid = {};
     }

@@ -1,6 +1,7 @@
 #include "ember/core/quantize.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -38,15 +39,25 @@ Quantizer Quantizer::fit_box(const Vec3d& lo, const Vec3d& hi) {
   // rounded to the grid (<= 1/2 unit off) and each point rounds by <= 1/2 unit.
   int k = 0;
   if (half > 0) {
-    k = static_cast<int>(std::floor(std::log2(static_cast<double>(kLimit - 2) / half)));
+    // From the exponent, not log2(limit / half): that ratio overflows for
+    // subnormal extents.
+    k = 24 - std::ilogb(half);
     while (std::ldexp(half, k) > static_cast<double>(kLimit - 2)) --k;
     while (std::ldexp(half, k + 1) <= static_cast<double>(kLimit - 2)) ++k;
   } else {
     k = 0;  // a single point: any scale works, keep the identity
   }
-  // Keep the grid fine enough but representable: 2^k must be a normal double
-  // and centre * 2^k must fit the int64 arithmetic below.
-  k = std::clamp(k, -1000, 1000);
+  // 2^k must be a normal double (exact scaling both ways). A model smaller
+  // than that allows (extent below ~1e-294, subnormal range) would be
+  // quantized onto too coarse a grid and silently collapse: refuse it.
+  if (k > kMaxExponent) {
+    char msg[96];
+    std::snprintf(msg, sizeof msg, "the model's extent is %.3g, below the smallest the grid supports (%.2g",
+                  2 * half, std::ldexp(2.0 * static_cast<double>(kLimit - 2), -kMaxExponent));
+    throw Error(std::string("coordinates too small to quantize: ") + msg +
+                ", near the subnormal range); scale the model up (by a power of two to keep coordinates exact)");
+  }
+  k = std::max(k, -kMaxExponent);
   q.k_ = k;
   q.scale_ = std::ldexp(1.0, k);
   q.inv_scale_ = std::ldexp(1.0, -k);

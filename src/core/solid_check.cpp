@@ -10,6 +10,7 @@
 #include <numeric>
 
 #include "core/weld.hpp"
+#include "ember/boolean.hpp"
 
 namespace ember::core {
 
@@ -45,13 +46,16 @@ class ContactSearch {
 
   enum class Outcome { None, Found, GaveUp };
 
-  Outcome run() {
+  /// Searches until the pairs found reach max_pairs (1: stop at the first).
+  Outcome run(std::size_t max_pairs) {
+    max_pairs_ = max_pairs;
     std::vector<std::uint32_t> all(members_.size());
     std::iota(all.begin(), all.end(), 0u);
     IntBox cell{{-2 * kCoordLimit, -2 * kCoordLimit, -2 * kCoordLimit}, {2 * kCoordLimit, 2 * kCoordLimit, 2 * kCoordLimit}};
     search(std::move(all), cell, 0);
-    return found_.load() ? Outcome::Found : (gave_up_.load() ? Outcome::GaveUp : Outcome::None);
+    return found_.load() > 0 ? Outcome::Found : (gave_up_.load() ? Outcome::GaveUp : Outcome::None);
   }
+  std::size_t pairs_found() const { return std::min(found_.load(), max_pairs_); }
 
  private:
   static constexpr std::size_t kLeaf = 48;
@@ -62,7 +66,7 @@ class ContactSearch {
   static constexpr std::size_t kMaxLeaf = 2048;
 
   void search(std::vector<std::uint32_t>&& items, const IntBox& cell, int depth) {
-    if (found_.load(std::memory_order_relaxed) || gave_up_.load(std::memory_order_relaxed)) return;
+    if (done()) return;
     int axis = 0;
     for (int a = 1; a < 3; ++a)
       if (cell.hi[a] - cell.lo[a] > cell.hi[axis] - cell.lo[axis]) axis = a;
@@ -113,10 +117,9 @@ class ContactSearch {
           const std::int64_t owner = std::max(bi.lo[a], bj.lo[a]);
           test = owner <= std::min(bi.hi[a], bj.hi[a]) && owner >= cell.lo[a] && owner < cell.hi[a];
         }
-        if (test && triangles_meet_improperly(corners_[members_[items[x]]], corners_[members_[items[y]]])) {
-          found_.store(true);
+        if (test && triangles_meet_improperly(corners_[members_[items[x]]], corners_[members_[items[y]]]) &&
+            found_.fetch_add(1) + 1 >= max_pairs_)
           return;
-        }
       }
     }
   }
@@ -124,7 +127,13 @@ class ContactSearch {
   std::span<const std::array<IntPoint, 3>> corners_;
   std::vector<std::uint32_t> members_;
   std::vector<IntBox> boxes_;
-  std::atomic<bool> found_{false}, gave_up_{false};
+  std::size_t max_pairs_ = 1;
+  std::atomic<std::size_t> found_{0};
+  std::atomic<bool> gave_up_{false};
+
+  bool done() const {
+    return found_.load(std::memory_order_relaxed) >= max_pairs_ || gave_up_.load(std::memory_order_relaxed);
+  }
 };
 
 /// Union-find root with path halving.
@@ -165,23 +174,26 @@ std::vector<std::uint32_t> component_representatives(const GridTriangles& grid,
 
 }  // namespace
 
-SolidVerdict check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand) {
+SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand) {
   std::vector<std::uint32_t> members;
   for (const SoupPolygon& p : root.soup)
     if (p.operand == operand) members.push_back(p.id);
-  if (members.empty()) return SolidVerdict::Solid;
-  switch (ContactSearch(grid.corners, members).run()) {
+  if (members.empty()) return {};
+  // Counting the contacts (not just finding one) costs at most one full
+  // search, the price of proving a solid operand; the count tells the user why.
+  ContactSearch search(grid.corners, members);
+  switch (search.run(OperandReport::kMaxReportedPairs)) {
     case ContactSearch::Outcome::Found:
-      return SolidVerdict::SelfIntersecting;
+      return {SolidVerdict::SelfIntersecting, search.pairs_found(), 0};
     case ContactSearch::Outcome::GaveUp:
-      return SolidVerdict::TooComplex;
+      return {SolidVerdict::TooComplex, 0, 0};
     case ContactSearch::Outcome::None:
       break;
   }
   const std::vector<std::uint32_t> reps = component_representatives(grid, members);
   // Each trace scans the whole soup a few times: bound the total work.
   constexpr std::size_t kTraceBudget = std::size_t{1} << 25;
-  if (reps.size() > 8 && reps.size() * root.soup.size() > kTraceBudget) return SolidVerdict::TooComplex;
+  if (reps.size() > 8 && reps.size() * root.soup.size() > kTraceBudget) return {SolidVerdict::TooComplex, 0, 0};
   std::vector<SolidVerdict> verdict(reps.size(), SolidVerdict::Solid);
   tbb::parallel_for(std::size_t{0}, reps.size(), [&](std::size_t c) {
     Wnv front, back;
@@ -191,9 +203,14 @@ SolidVerdict check_solid(const Subproblem& root, const GridTriangles& grid, std:
       verdict[c] = SolidVerdict::WrongWinding;
     }
   });
-  for (const SolidVerdict v : verdict)
-    if (v != SolidVerdict::Solid) return v;
-  return SolidVerdict::Solid;
+  SolidFinding finding;
+  finding.misoriented_components = static_cast<std::size_t>(std::count(verdict.begin(), verdict.end(), SolidVerdict::WrongWinding));
+  if (finding.misoriented_components > 0) {
+    finding.verdict = SolidVerdict::WrongWinding;
+  } else if (std::count(verdict.begin(), verdict.end(), SolidVerdict::Unclassified) > 0) {
+    finding.verdict = SolidVerdict::Unclassified;
+  }
+  return finding;
 }
 
 }  // namespace ember::core

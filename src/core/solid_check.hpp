@@ -36,10 +36,17 @@ struct GridTriangles {
   std::vector<std::array<std::uint32_t, 3>> vertex_ids;
 };
 
+/// The verdict and, for the user, how much evidence was found against it.
+struct SolidFinding {
+  SolidVerdict verdict = SolidVerdict::Solid;
+  std::size_t self_intersecting_pairs = 0;  ///< counted up to OperandReport::kMaxReportedPairs
+  std::size_t misoriented_components = 0;
+};
+
 /// Decides whether `operand` is solid. `root` is the whole problem (its soup
 /// holds every operand's polygons, polygon i has id i; its reference point is
 /// outside everything).
-SolidVerdict check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand);
+SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand);
 
 /// Step 1 alone, for one pair (exposed for tests): true if the two
 /// non-degenerate triangles meet anywhere except in shared vertices or a

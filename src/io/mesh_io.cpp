@@ -58,10 +58,11 @@ MeshFormat format_from_path(const std::filesystem::path& path) {
               "' (supported: .obj, .stl, .off, .ply, .3mf)");
 }
 
-Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name) {
+Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name,
+               std::vector<std::string>* warnings) {
   switch (format) {
     case MeshFormat::Obj: return read_obj(bytes, name);
-    case MeshFormat::Stl: return read_stl(bytes, name);
+    case MeshFormat::Stl: return read_stl(bytes, name, warnings);
     case MeshFormat::Off: return read_off(bytes, name);
     case MeshFormat::Ply: return read_ply(bytes, name);
     case MeshFormat::ThreeMf: return single_3mf_object(read_3mf(bytes, name), name);
@@ -69,10 +70,12 @@ Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name)
   throw Error(std::string(name) + ": invalid mesh format value");
 }
 
-Mesh read_mesh(const std::filesystem::path& path) {
+Mesh read_mesh(const std::filesystem::path& path) { return read_mesh(path, nullptr); }
+
+Mesh read_mesh(const std::filesystem::path& path, std::vector<std::string>* warnings) {
   const MeshFormat format = format_from_path(path);
   const std::string data = read_file(path);
-  return read_mesh(data, format, path.string());
+  return read_mesh(data, format, path.string(), warnings);
 }
 
 std::vector<Mesh> read_meshes(const std::filesystem::path& path) {

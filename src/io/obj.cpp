@@ -26,6 +26,12 @@ bool is_ignored_statement(std::string_view kw) {
 }  // namespace
 
 Mesh read_obj(std::string_view bytes, std::string_view name) {
+  bytes = io_detail::skip_bom(bytes);
+  // Every other format rejects an empty file; an empty OBJ is most likely a
+  // failed export, not an empty solid. (A file with only comments, as ember
+  // writes for an empty result, stays a valid empty mesh.)
+  if (bytes.find_first_not_of(" \t\r\n\f\v") == std::string_view::npos)
+    io_detail::fail_in_file(name, "empty file: no faces in " + std::string(name));
   io_detail::TextScanner s(bytes, name, /*multiline=*/false, '#');
   Mesh mesh;
   mesh.vertices.reserve(bytes.size() / 64);

@@ -13,7 +13,7 @@
 namespace ember {
 
 Mesh read_off(std::string_view bytes, std::string_view name) {
-  if (bytes.starts_with("\xEF\xBB\xBF")) bytes.remove_prefix(3);  // UTF-8 byte order mark
+  bytes = io_detail::skip_bom(bytes);
   io_detail::TextScanner s(bytes, name, /*multiline=*/true, '#');
   // Values of one vertex or face must stay on its line: a short line would
   // otherwise borrow values from the next one and shift everything after it.

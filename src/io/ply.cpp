@@ -363,6 +363,7 @@ class PlyBody {
 }  // namespace
 
 Mesh read_ply(std::string_view bytes, std::string_view name) {
+  bytes = io_detail::skip_bom(bytes);
   TextScanner s(bytes, name, /*multiline=*/true, 0);
   const PlyHeader h = parse_header(s);
   if (h.format == PlyFormat::Ascii) {

@@ -138,15 +138,22 @@ Mesh read_binary_stl(std::string_view bytes, std::string_view name) {
 
 class AsciiStlReader {
  public:
-  AsciiStlReader(std::string_view bytes, std::string_view name)
-      : s_(bytes, name, /*multiline=*/true, 0), welder_(mesh_, bytes.size() / 400 + 16) {}
+  AsciiStlReader(std::string_view bytes, std::string_view name, std::vector<std::string>* warnings)
+      : s_(bytes, name, /*multiline=*/true, 0), welder_(mesh_, bytes.size() / 400 + 16), warnings_(warnings) {}
 
   Mesh read() {
     expect("solid");
     s_.next_line();  // the solid's name
     for (;;) {
       const std::string_view tok = s_.token();
-      if (tok.empty()) s_.fail("file ends without 'endsolid'");
+      if (tok.empty()) {
+        // Several exporters omit the closing line; the facets are complete
+        // (a cut inside a facet is still an error), so read them and say so.
+        if (warnings_)
+          warnings_->push_back(std::string(s_.name()) + ": ASCII STL ends without 'endsolid' (line " +
+                               std::to_string(s_.line()) + "); the file may be truncated after a complete facet");
+        break;
+      }
       if (iequals(tok, "facet")) {
         read_facet();
       } else if (iequals(tok, "endsolid")) {
@@ -198,15 +205,18 @@ class AsciiStlReader {
   io_detail::TextScanner s_;
   Mesh mesh_;
   VertexWelder welder_;
+  std::vector<std::string>* warnings_;
   std::vector<std::uint32_t> face_;
 };
 
 }  // namespace
 
-Mesh read_stl(std::string_view bytes, std::string_view name) {
+Mesh read_stl(std::string_view bytes, std::string_view name, std::vector<std::string>* warnings) {
   const bool binary_size_ok =
       bytes.size() >= 84 && 84 + std::uint64_t{50} * load_u32le(bytes.data() + 80) == bytes.size();
-  if (looks_like_ascii(bytes)) return AsciiStlReader(bytes, name).read();
+  // A byte-order mark only ever precedes text, never a binary header.
+  if (looks_like_ascii(io_detail::skip_bom(bytes)))
+    return AsciiStlReader(io_detail::skip_bom(bytes), name, warnings).read();
   if (binary_size_ok) return read_binary_stl(bytes, name);
   if (bytes.size() < 84)
     fail_in_file(name, "not an STL file: " + std::to_string(bytes.size()) +

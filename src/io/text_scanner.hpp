@@ -165,4 +165,11 @@ class TextScanner {
   char comment_;
 };
 
+/// The text without a leading UTF-8 byte-order mark (some Windows tools write
+/// one before the header; it carries no information for these formats).
+inline std::string_view skip_bom(std::string_view text) {
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
+  return text;
+}
+
 }  // namespace ember::io_detail

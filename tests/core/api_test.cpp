@@ -16,17 +16,6 @@ std::string lower(std::string s) {
   return s;
 }
 
-/// The message of the ember::Error thrown by f ("" if none was thrown).
-template <class F>
-std::string error_message(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(BooleanApi, EmptyOperandListThrows) {
   std::vector<Mesh> none;
   EXPECT_THROW(boolean(std::span<const Mesh>(none), Op::Union), Error);

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "ember/boolean.hpp"
@@ -24,6 +25,17 @@ inline void expect_watertight_if_closed(std::span<const Mesh> ops, const Boolean
   for (const Mesh& m : ops)
     if (unbalanced_edges(m) != 0) return;
   EXPECT_EQ(unbalanced_edges(r.mesh), 0u) << "closed operands must give a closed, consistently oriented result";
+}
+
+/// The message of the ember::Error thrown by f ("" if none was thrown).
+template <class F>
+std::string error_message(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
 }
 
 /// Runs the Boolean and checks the structural invariants of the result:

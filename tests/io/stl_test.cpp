@@ -100,11 +100,23 @@ TEST(Stl, BinaryErrorsGiveByteOffsets) {
   EXPECT_ERROR_HAS(read_stl("garbage", "tiny.stl"), "tiny.stl", "too short");
 }
 
+TEST(Stl, AsciiWithoutEndsolidIsReadWithAWarning) {
+  // Issue 9: other tools accept such files; the facets are complete, so they
+  // are read and the missing line is reported as a warning, not an error.
+  const std::string text =
+      "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+  std::vector<std::string> warnings;
+  const Mesh m = read_stl(text, "open.stl", &warnings);
+  EXPECT_EQ(m.face_count(), 1u);
+  EXPECT_EQ(m.vertices.size(), 3u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("open.stl: ASCII STL ends without 'endsolid'"), std::string::npos) << warnings[0];
+  EXPECT_EQ(read_stl(text, "open.stl").face_count(), 1u);  // no warnings list: still read
+  // A cut inside a facet is still an error.
+  EXPECT_ERROR_HAS(read_stl("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n", "cut.stl"), "cut.stl:");
+}
+
 TEST(Stl, AsciiErrorsGiveLines) {
-  EXPECT_ERROR_HAS(read_stl("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
-                            "endloop\nendfacet\n",
-                            "open.stl"),
-                   "open.stl:9:", "without 'endsolid'");
   EXPECT_ERROR_HAS(read_stl("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 zero 0\n", "num.stl"), "num.stl:4:",
                    "vertex y coordinate", "'zero'");
   EXPECT_ERROR_HAS(read_stl("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n"

@@ -24,6 +24,9 @@ class Quantizer {
   /// below 2^25 so the root box can be padded and its reference point placed
   /// outside all geometry.
   static constexpr std::int64_t kLimit = kCoordLimit - 2;
+  /// |k| bound: 2^k and 2^-k stay normal doubles. fit/fit_box throw for
+  /// models whose extent would need a finer grid (below ~1e-294).
+  static constexpr int kMaxExponent = 1000;
 
   Quantizer() = default;
   /// The map for these points (finite values; throws ember::Error otherwise).

@@ -2,6 +2,7 @@
 // Reading and writing meshes in OBJ, STL (binary and ASCII), OFF, PLY and 3MF.
 //
 // Readers take the whole file as bytes; `name` only appears in error messages.
+// Text headers may start with a UTF-8 byte-order mark.
 // Every malformed input ends in an ember::Error naming the file and the line
 // (text formats) or byte offset (binary formats) and what was wrong; a reader
 // never returns a mesh that silently differs from the file.
@@ -28,6 +29,9 @@ Mesh read_mesh(const std::filesystem::path& path);
 /// Reads every mesh of a file: one per build item of a 3MF file, the single
 /// mesh of any other format.
 std::vector<Mesh> read_meshes(const std::filesystem::path& path);
+/// As above; tolerated oddities of the file (an ASCII STL without 'endsolid')
+/// are appended to `warnings` as "FILE: what" instead of being an error.
+Mesh read_mesh(const std::filesystem::path& path, std::vector<std::string>* warnings);
 /// Writes a mesh; the format follows the extension (STL: binary, PLY: binary
 /// little endian). Throws ember::Error when the file cannot be written.
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path);
@@ -36,8 +40,10 @@ void write_mesh(const Mesh& mesh, const std::filesystem::path& path);
 /// texture, normal, group, material and other statements are ignored.
 Mesh read_obj(std::string_view bytes, std::string_view name);
 /// STL, binary or ASCII (detected by size and content). STL stores a triangle
-/// soup; identical positions are merged into one vertex (+0.0 == -0.0).
-Mesh read_stl(std::string_view bytes, std::string_view name);
+/// soup; identical positions are merged into one vertex (+0.0 == -0.0). An
+/// ASCII file that ends without 'endsolid' is read (other tools write such
+/// files) and noted in `warnings` when given.
+Mesh read_stl(std::string_view bytes, std::string_view name, std::vector<std::string>* warnings = nullptr);
 /// OFF with optional ST/C/N prefixes in the header and per-face colors.
 Mesh read_off(std::string_view bytes, std::string_view name);
 /// PLY ascii, binary_little_endian or binary_big_endian with any properties.
@@ -46,8 +52,9 @@ Mesh read_ply(std::string_view bytes, std::string_view name);
 /// components' transforms applied. Coordinates are taken as they are, in the
 /// file's unit; colors, materials and other extensions are ignored.
 std::vector<Mesh> read_3mf(std::string_view bytes, std::string_view name);
-/// Reads in-memory bytes in the given format (3MF: exactly one object).
-Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name);
+/// Reads in-memory bytes in the given format (3MF: exactly one object; warnings: as for read_stl).
+Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name,
+               std::vector<std::string>* warnings = nullptr);
 
 /// OBJ with shortest round-trip decimal coordinates (reads back bit-exact).
 std::string write_obj(const Mesh& mesh);

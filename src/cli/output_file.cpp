@@ -1,0 +1,140 @@
+// Atomic, private result files (see output_file.hpp).
+#include "cli/output_file.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <thread>
+
+#include "ember/error.hpp"
+
+namespace ember::cli {
+
+namespace {
+
+// The pending temporary file, readable from a signal handler: a fixed buffer
+// and a flag (no allocation, no locks in the handler).
+char g_pending[4096];
+volatile sig_atomic_t g_has_pending = 0;
+
+extern "C" void remove_pending_and_die(int sig) {
+  if (g_has_pending) ::unlink(g_pending);
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+/// Blocks SIGINT/SIGTERM while the pending path changes, so the handler
+/// never sees a half-written name or misses a file that already exists.
+class SignalBlock {
+ public:
+  SignalBlock() {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    ::sigprocmask(SIG_BLOCK, &set, &old_);
+  }
+  ~SignalBlock() { ::sigprocmask(SIG_SETMASK, &old_, nullptr); }
+  SignalBlock(const SignalBlock&) = delete;
+  SignalBlock& operator=(const SignalBlock&) = delete;
+
+ private:
+  sigset_t old_;
+};
+
+std::string system_reason() { return std::strerror(errno); }
+
+[[noreturn]] void fail(const std::filesystem::path& out, const std::string& what) {
+  throw Error(out.string() + ": " + what);
+}
+
+/// Refuses to replace anything but a regular file: rename() would silently
+/// swap out a symlink (not its target) or fail late on a directory.
+void check_replaceable(const std::filesystem::path& out) {
+  struct stat st {};
+  if (::lstat(out.c_str(), &st) != 0) return;  // absent (or unreadable: creating the temp file reports why)
+  if (S_ISREG(st.st_mode)) return;
+  const char* kind = S_ISDIR(st.st_mode) ? "a directory" : S_ISLNK(st.st_mode) ? "a symbolic link" : "a special file";
+  fail(out, std::string("exists and is ") + kind + ", not a regular file; refusing to replace it (remove it or choose another -o)");
+}
+
+/// Removes the temporary file and forgets it.
+void discard(const std::string& tmp) {
+  SignalBlock block;
+  ::unlink(tmp.c_str());
+  g_has_pending = 0;
+}
+
+void write_all(int fd, const std::string& bytes, const std::string& tmp, const std::filesystem::path& out) {
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const std::string reason = system_reason();
+      ::close(fd);
+      discard(tmp);
+      fail(out, "write failed: " + reason);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+}  // namespace
+
+void install_cleanup_handlers() {
+  struct sigaction sa {};
+  sa.sa_handler = remove_pending_and_die;
+  sigemptyset(&sa.sa_mask);
+  ::sigaction(SIGINT, &sa, nullptr);
+  ::sigaction(SIGTERM, &sa, nullptr);
+}
+
+void write_file_atomically(const std::string& bytes, const std::filesystem::path& out) {
+  check_replaceable(out);
+  const std::filesystem::path dir = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
+  std::string name = ".";  // hidden, beside the output; built with += (GCC 12 warns spuriously on "." + string)
+  name += out.filename().string();
+  name += ".ember-XXXXXX";
+  std::string tmp = (dir / name).string();
+  if (tmp.size() >= sizeof g_pending) fail(out, "path too long for a temporary file beside it");
+  int fd = -1;
+  {
+    SignalBlock block;
+    fd = ::mkostemp(tmp.data(), O_CLOEXEC);  // O_CREAT | O_EXCL, mode 0600
+    if (fd < 0) fail(out, "cannot open for writing: " + system_reason());
+    std::memcpy(g_pending, tmp.c_str(), tmp.size() + 1);
+    g_has_pending = 1;
+  }
+  write_all(fd, bytes, tmp, out);
+  // mkstemp's 0600 is for the time the file is incomplete; the result gets
+  // the mode an ordinary new file would get (0666 minus the umask).
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  std::string problem;
+  if (::fchmod(fd, 0666 & ~mask) != 0) problem = "cannot set the file mode: " + system_reason();
+  if (::close(fd) != 0 && problem.empty()) problem = "write failed: " + system_reason();  // e.g. disk full on NFS
+  if (!problem.empty()) {
+    discard(tmp);
+    fail(out, problem);
+  }
+  // Test hook: hold the finished temporary file so that tests can interrupt
+  // the process at this point and check the cleanup.
+  if (const char* hold = std::getenv("EMBER_TEST_HOLD_TEMP_MS"))
+    std::this_thread::sleep_for(std::chrono::milliseconds(std::atoi(hold)));
+  if (::rename(tmp.c_str(), out.c_str()) != 0) {
+    const std::string reason = system_reason();
+    discard(tmp);
+    fail(out, "cannot move the result into place: " + reason);
+  }
+  SignalBlock block;
+  g_has_pending = 0;
+}
+
+}  // namespace ember::cli
