@@ -206,13 +206,17 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, Lea
     // Two polygons of one solid operand never cross or overlap (NSI), and the
     // solid operand's own winding numbers at t are known (0 / 1).
     if (o.operand == t.operand && ctx.solid[t.operand]) continue;
-    if (!touches_plane(o.poly, t.poly.support, sc.other_signs)) continue;
-    sc.related.push_back(static_cast<std::uint32_t>(i));
     bool front = false, back = false;
-    for (const std::int8_t v : sc.other_signs) {
-      front |= v > 0;
-      back |= v < 0;
+    // Coplanar first: one plane comparison instead of exact zero tests of
+    // every vertex (stacks are full of them).
+    if (!coplanar(t.poly.support, o.poly.support)) {
+      if (!touches_plane(o.poly, t.poly.support, sc.other_signs)) continue;
+      for (const std::int8_t v : sc.other_signs) {
+        front |= v > 0;
+        back |= v < 0;
+      }
     }
+    sc.related.push_back(static_cast<std::uint32_t>(i));
     if (!front && !back && !ctx.closed[o.operand]) front = back = true;  // coplanar, open operand
     if (front) mark(sc.free_front, sc.n_front, o.operand);
     if (back) mark(sc.free_back, sc.n_back, o.operand);
@@ -229,7 +233,10 @@ void disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext&
   pieces[0].poly = t.poly;  // reuses the capacity of the previous polygon's first piece
   std::vector<Piece>& next = sc.next;
   Polygon neg, pos;
-  for (const SoupPolygon& o : soup) {
+  // Nearest lower ids first: in a stack, t's predecessors (its own face's
+  // other triangle, the previous copy) usually cover it after one or two cuts.
+  for (std::size_t k = soup.size(); k-- > 0;) {
+    const SoupPolygon& o = soup[k];
     if (o.id >= t.id || !boxes_overlap(t, o)) continue;
     if (o.operand == t.operand && ctx.solid[t.operand]) continue;  // NSI: no overlap
     if (!coplanar(t.poly.support, o.poly.support)) continue;
@@ -262,15 +269,13 @@ void refine(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, boo
             std::vector<Piece>& pieces) {
   for (const std::uint32_t r : sc.related) {
     const SoupPolygon& o = soup[r];
-    touches_plane(o.poly, t.poly.support, sc.other_signs);
-    bool same_plane = true;
-    for (const std::int8_t v : sc.other_signs) same_plane &= v == 0;
-    if (same_plane) {
+    if (coplanar(t.poly.support, o.poly.support)) {
       if (o.id < t.id || (ctx.closed[o.operand] && !face)) continue;
       const std::size_t n = pieces.size();
       for (std::size_t i = 0; i < n; ++i)
         if (coplanar_overlap(pieces[i].poly, o.poly)) cut_by_coplanar(pieces, i, o.poly);
     } else {
+      touches_plane(o.poly, t.poly.support, sc.other_signs);
       const std::size_t n = pieces.size();
       for (std::size_t i = 0; i < n; ++i)
         cut_by_transverse(pieces, i, t.poly.support, o.poly, sc.other_signs, sc.signs, sc.cons);
