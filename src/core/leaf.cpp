@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
+#include <span>
 
 #include "core/solve.hpp"
 #include "core/trace.hpp"
@@ -160,6 +162,8 @@ struct LeafScratch {
   std::vector<Plane> cons;
   Wnv w, delta;
   std::vector<std::uint32_t> related;  ///< soup indices of the polygons that touch t's plane near t
+  std::vector<std::uint32_t> related_at;       ///< per related polygon: its signs in related_signs (coplanar: none)
+  std::vector<std::int8_t> related_signs;      ///< vertex signs against t's plane, concatenated
   std::vector<std::uint32_t> free_front, free_back;  ///< per operand: == stamp if free on that side of t
   std::uint32_t stamp = 0;
   std::size_t n_front = 0, n_back = 0;  ///< free operands per side
@@ -185,8 +189,13 @@ bool on_box_face(const SoupPolygon& t, const Box& box) {
 /// in front of it; a coplanar polygon of a closed operand changes nothing by
 /// itself (its edges continue into polygons that leave the plane, which are
 /// counted). Coplanar polygons of open operands count on both sides.
-void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, LeafScratch& sc) {
+/// `direction[i]` names polygon i's class of parallel planes.
+void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, const std::vector<std::uint32_t>& direction,
+            LeafScratch& sc) {
+  const std::uint32_t t_direction = direction[static_cast<std::size_t>(&t - soup.data())];
   sc.related.clear();
+  sc.related_at.clear();
+  sc.related_signs.clear();
   if (sc.free_front.size() != ctx.operands) {
     sc.free_front.assign(ctx.operands, 0);
     sc.free_back.assign(ctx.operands, 0);
@@ -209,7 +218,7 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, Lea
     bool front = false, back = false;
     // Coplanar first: one plane comparison instead of exact zero tests of
     // every vertex (stacks are full of them).
-    if (!coplanar(t.poly.support, o.poly.support)) {
+    if (direction[i] != t_direction || !coplanar(t.poly.support, o.poly.support)) {
       if (!touches_plane(o.poly, t.poly.support, sc.other_signs)) continue;
       for (const std::int8_t v : sc.other_signs) {
         front |= v > 0;
@@ -217,6 +226,8 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, Lea
       }
     }
     sc.related.push_back(static_cast<std::uint32_t>(i));
+    sc.related_at.push_back(static_cast<std::uint32_t>(sc.related_signs.size()));
+    if (front || back) sc.related_signs.insert(sc.related_signs.end(), sc.other_signs.begin(), sc.other_signs.end());
     if (!front && !back && !ctx.closed[o.operand]) front = back = true;  // coplanar, open operand
     if (front) mark(sc.free_front, sc.n_front, o.operand);
     if (back) mark(sc.free_back, sc.n_back, o.operand);
@@ -227,7 +238,10 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, Lea
 /// represents the overlap (Fig. 8). Only enabled pieces are kept, and the
 /// loop stops as soon as t is covered: in a coplanar stack most polygons are
 /// covered by their first few lower-id neighbours.
-void disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, LeafScratch& sc,
+/// `parallel` holds t's class of parallel polygons (soup indices, ascending)
+/// and `at` t's position in it: only those can be coplanar with t.
+void disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx,
+                     std::span<const std::uint32_t> parallel, std::size_t at, LeafScratch& sc,
                      std::vector<Piece>& pieces) {
   pieces.resize(1);
   pieces[0].poly = t.poly;  // reuses the capacity of the previous polygon's first piece
@@ -235,12 +249,18 @@ void disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext&
   Polygon neg, pos;
   // Nearest lower ids first: in a stack, t's predecessors (its own face's
   // other triangle, the previous copy) usually cover it after one or two cuts.
-  for (std::size_t k = soup.size(); k-- > 0;) {
-    const SoupPolygon& o = soup[k];
-    if (o.id >= t.id || !boxes_overlap(t, o)) continue;
+  // What is left of t shrinks as it is cut: polygons outside the box of the
+  // remaining pieces are skipped without a plane test.
+  std::array<double, 3> lo = t.lo, hi = t.hi;
+  bool cut = false;
+  for (std::size_t k = parallel.size(); k-- > 0;) {
+    if (k == at) continue;
+    const SoupPolygon& o = soup[parallel[k]];
+    if (o.id >= t.id || box_disjoint(o, lo, hi)) continue;
     if (o.operand == t.operand && ctx.solid[t.operand]) continue;  // NSI: no overlap
     if (!coplanar(t.poly.support, o.poly.support)) continue;
     next.clear();
+    cut = false;
     for (Piece& p : pieces) {
       if (!coplanar_overlap(p.poly, o.poly)) {
         next.push_back(std::move(p));
@@ -252,9 +272,21 @@ void disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext&
         next.push_back({pos});
         std::swap(p.poly, neg);
       }
+      cut = true;
     }
     std::swap(pieces, next);
     if (pieces.empty()) return;
+    if (cut) {
+      constexpr double kMargin = 1.0 / 65536;  // as update_bounds: covers the approximation error
+      lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+      hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+      for (const Piece& p : pieces)
+        for (const Point& v : p.poly.vertices)
+          for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], approx(v)[a] - kMargin);
+            hi[a] = std::max(hi[a], approx(v)[a] + kMargin);
+          }
+    }
   }
 }
 
@@ -267,15 +299,17 @@ void disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext&
 /// unless that polygon lies outside the box).
 void refine(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, bool face, LeafScratch& sc,
             std::vector<Piece>& pieces) {
-  for (const std::uint32_t r : sc.related) {
-    const SoupPolygon& o = soup[r];
-    if (coplanar(t.poly.support, o.poly.support)) {
+  for (std::size_t k = 0; k < sc.related.size(); ++k) {
+    const SoupPolygon& o = soup[sc.related[k]];
+    const std::size_t at = sc.related_at[k];
+    const std::size_t end = k + 1 < sc.related.size() ? sc.related_at[k + 1] : sc.related_signs.size();
+    if (at == end) {  // coplanar (a touching polygon has a vertex off the plane)
       if (o.id < t.id || (ctx.closed[o.operand] && !face)) continue;
       const std::size_t n = pieces.size();
       for (std::size_t i = 0; i < n; ++i)
         if (coplanar_overlap(pieces[i].poly, o.poly)) cut_by_coplanar(pieces, i, o.poly);
     } else {
-      touches_plane(o.poly, t.poly.support, sc.other_signs);
+      sc.other_signs.assign(sc.related_signs.begin() + at, sc.related_signs.begin() + end);
       const std::size_t n = pieces.size();
       for (std::size_t i = 0; i < n; ++i)
         cut_by_transverse(pieces, i, t.poly.support, o.poly, sc.other_signs, sc.signs, sc.cons);
@@ -466,7 +500,46 @@ int side_value(const SolveContext& ctx, const Wnv& w, const std::vector<std::uin
 
 }  // namespace
 
+namespace {
+
+/// The direction class of a polygon's plane: the normal divided by the gcd of
+/// its components, pointing into the positive half of its first non-zero
+/// axis. Parallel planes (either orientation), and only they, share it.
+std::array<std::int64_t, 3> direction_key(const Plane& p) {
+  std::array<std::int64_t, 3> n{static_cast<std::int64_t>(p.a.raw()), static_cast<std::int64_t>(p.b.raw()),
+                                 static_cast<std::int64_t>(p.c.raw())};
+  std::int64_t g = 0;
+  for (const std::int64_t v : n) g = std::gcd(g, v < 0 ? -v : v);
+  if (g == 0) return n;
+  const std::int64_t first = n[0] != 0 ? n[0] : (n[1] != 0 ? n[1] : n[2]);
+  if (first < 0) g = -g;
+  for (std::int64_t& v : n) v /= g;
+  return n;
+}
+
+}  // namespace
+
 void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<OutputPolygon>& out) {
+  // Group the soup by plane direction once, so that the coplanar overlaps of
+  // a stack are found among its parallel polygons, not the whole leaf.
+  const std::size_t size = pb.soup.size();
+  std::vector<std::pair<std::array<std::int64_t, 3>, std::uint32_t>> keyed(size);
+  for (std::size_t i = 0; i < size; ++i)
+    keyed[i] = {direction_key(pb.soup[i].poly.support), static_cast<std::uint32_t>(i)};
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::uint32_t> order(size), class_begin(size), class_end(size), position(size);
+  for (std::size_t i = 0; i < size;) {
+    std::size_t j = i;
+    while (j < size && keyed[j].first == keyed[i].first) ++j;
+    for (std::size_t k = i; k < j; ++k) {
+      order[k] = keyed[k].second;
+      class_begin[keyed[k].second] = static_cast<std::uint32_t>(i);
+      class_end[keyed[k].second] = static_cast<std::uint32_t>(j);
+      position[keyed[k].second] = static_cast<std::uint32_t>(k - i);
+    }
+    i = j;
+  }
+  keyed = {};
   Wnv w_front, w_back;
   LeafScratch scratch;
   std::vector<Piece> pieces;
@@ -480,9 +553,12 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
     out.push_back({f, t.id, t.operand, in_front});
   };
   for (const SoupPolygon& t : pb.soup) {
-    disable_covered(pb.soup, t, ctx, scratch, pieces);
+    const std::size_t ti = static_cast<std::size_t>(&t - pb.soup.data());
+    disable_covered(pb.soup, t, ctx,
+                    std::span<const std::uint32_t>(order.data() + class_begin[ti], class_end[ti] - class_begin[ti]),
+                    position[ti], scratch, pieces);
     if (pieces.empty()) continue;
-    gather(pb.soup, t, ctx, scratch);
+    gather(pb.soup, t, ctx, class_begin, scratch);
     const bool face = on_box_face(t, pb.box);
     // Piece-level early termination (Section 4.5.2 applied to one polygon):
     // if the operands whose winding numbers can change along either side of t
