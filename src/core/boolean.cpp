@@ -295,14 +295,16 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     core::SolveContext ctx;
     ctx.operands = operands.size();
     ctx.inside = [&indicator](const core::Wnv& w) { return indicator(WindingVector(w.data(), w.size())); };
-    if (!options.indicator)
-      ctx.inside_flags = [op, k = options.min_k](const std::vector<char>& f) {
-        return core::inside_by_flags(op, k, f);
-      };
+    if (!options.indicator) {
+      ctx.op = op;
+      ctx.min_k = options.min_k;
+    }
     ctx.solid.assign(operands.size(), options.all_solid ? 1 : 0);
     for (std::size_t i = 0; i < options.solid.size(); ++i) ctx.solid[i] |= options.solid[i] ? 1 : 0;
     for (std::size_t o = 0; o < operands.size(); ++o)
       if (ctx.solid[o]) result.stats.operands[o].solid = SolidStatus::Promised;
+    ctx.closed.resize(operands.size());
+    for (std::size_t o = 0; o < operands.size(); ++o) ctx.closed[o] = open[o] == 0 || ctx.solid[o];
     if (options.detect_solid) {
       // Operands not promised solid are proven solid (or not) exactly.
       for (std::size_t o = 0; o < operands.size(); ++o)

@@ -24,6 +24,26 @@ bool inside_by_count(Operation op, int min_k, std::size_t operands, std::size_t 
   return false;
 }
 
+int inside_over_free(Operation op, int min_k, std::size_t operands, std::size_t inside, std::size_t free, int first) {
+  if (free == 0) return inside_by_count(op, min_k, operands, inside, first == 1) ? 1 : 0;
+  switch (op) {
+    case Operation::Union:  // count >= 1
+      return inside > 0 ? 1 : -1;
+    case Operation::Intersection:  // count == operands
+      return inside + free < operands ? 0 : -1;
+    case Operation::Xor:  // every free flag flips the parity
+      return -1;
+    case Operation::AtLeastK:  // count >= k
+      if (inside >= static_cast<std::size_t>(min_k)) return 1;
+      return inside + free < static_cast<std::size_t>(min_k) ? 0 : -1;
+    case Operation::Difference:  // operand 0 inside and no other
+      if (first == 0) return 0;
+      if (first == 1) return inside >= 2 ? 0 : -1;  // a free other may be inside or not
+      return inside >= 1 ? 0 : -1;                  // operand 0 free: only known others decide
+  }
+  return -1;
+}
+
 }  // namespace core
 
 // A point is inside operand i when its winding number w_i is non-zero (the

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
+#include <span>
 
 #include "core/solve.hpp"
 #include "core/trace.hpp"
@@ -14,9 +16,9 @@ namespace ember::core {
 
 namespace {
 
+/// A convex piece of a polygon (a leaf of the paper's local BSP).
 struct Piece {
   Polygon poly;
-  bool disabled = false;  ///< overlapped by a coplanar polygon with a lower id (Fig. 8)
 };
 
 bool boxes_overlap(const SoupPolygon& a, const SoupPolygon& b) { return !box_disjoint(a, b.lo, b.hi); }
@@ -38,18 +40,15 @@ bool coplanar_overlap(const Polygon& a, const Polygon& b) {
   return true;
 }
 
-/// Case C4: cut the piece along the edges of the coplanar polygon `other`;
-/// parts outside become new pieces, the part inside stays in pieces[i].
-void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& other, bool disable) {
+/// Case C4 for a coplanar polygon with a higher id: cut the piece along the
+/// edges of `other`; parts outside become new pieces.
+void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& other) {
   Polygon neg, pos;
   for (const Plane& e : other.edges) {
-    const ClipSide side = clip(pieces[i].poly, e, neg, pos);
-    if (side == ClipSide::Both) {
-      pieces.push_back({pos, pieces[i].disabled});
-      pieces[i].poly = neg;
-    }
+    if (clip(pieces[i].poly, e, neg, pos) != ClipSide::Both) continue;
+    pieces.push_back({pos});
+    std::swap(pieces[i].poly, neg);
   }
-  if (disable) pieces[i].disabled = true;
 }
 
 /// Appends the edges of a convex polygon that can bound the chord where a
@@ -139,7 +138,7 @@ void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& s
   Polygon n, p;
   if (clip(poly, signs, other.support, n, p) != ClipSide::Both) return;
   pieces[i].poly = std::move(n);
-  pieces.push_back({std::move(p), pieces[i].disabled});
+  pieces.push_back({std::move(p)});
 }
 
 /// Classifies o's vertices against a plane; false if all lie strictly on
@@ -162,31 +161,158 @@ struct LeafScratch {
   std::vector<std::int8_t> other_signs, signs;
   std::vector<Plane> cons;
   Wnv w, delta;
+  std::vector<std::uint32_t> related;  ///< soup indices of the polygons that touch t's plane near t
+  std::vector<std::uint32_t> related_at;       ///< per related polygon: its signs in related_signs (coplanar: none)
+  std::vector<std::int8_t> related_signs;      ///< vertex signs against t's plane, concatenated
+  std::vector<std::uint32_t> free_front, free_back;  ///< per operand: == stamp if free on that side of t
+  std::uint32_t stamp = 0;
+  std::size_t n_front = 0, n_back = 0;  ///< free operands per side
+  std::vector<Piece> sub, next;         ///< refinement of one piece; pieces being rebuilt
 };
 
-/// Fills `pieces` with the enabled and disabled pieces of t.
-void build_bsp(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, LeafScratch& scratch,
-               std::vector<Piece>& pieces) {
+/// True if t lies in a face plane of the box: then one side of t is outside
+/// the box, where the soup does not show which polygons touch t.
+bool on_box_face(const SoupPolygon& t, const Box& box) {
+  const Plane& S = t.poly.support;
+  for (int a = 0; a < 3; ++a) {
+    if (S.normal((a + 1) % 3).sign() != 0 || S.normal((a + 2) % 3).sign() != 0) continue;
+    const Point& v = t.poly.vertices.front();
+    return classify(v, axis_plane(a, box.lo[a])) == 0 || classify(v, axis_plane(a, box.hi[a])) == 0;
+  }
+  return false;
+}
+
+/// One pass over the soup for polygon t: collects the polygons that can cut t
+/// (they touch t's plane within t's box) and, per side of t, the operands
+/// whose winding number may change along that side of t ("free"). Just in
+/// front of t, w changes only across polygons that touch t's plane and reach
+/// in front of it; a coplanar polygon of a closed operand changes nothing by
+/// itself (its edges continue into polygons that leave the plane, which are
+/// counted). Coplanar polygons of open operands count on both sides.
+/// `direction[i]` names polygon i's class of parallel planes.
+void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, const std::vector<std::uint32_t>& direction,
+            LeafScratch& sc) {
+  const std::uint32_t t_direction = direction[static_cast<std::size_t>(&t - soup.data())];
+  sc.related.clear();
+  sc.related_at.clear();
+  sc.related_signs.clear();
+  if (sc.free_front.size() != ctx.operands) {
+    sc.free_front.assign(ctx.operands, 0);
+    sc.free_back.assign(ctx.operands, 0);
+    sc.stamp = 0;
+  }
+  ++sc.stamp;
+  sc.n_front = sc.n_back = 0;
+  const auto mark = [&](std::vector<std::uint32_t>& f, std::size_t& n, std::uint32_t o) {
+    if (f[o] != sc.stamp) {
+      f[o] = sc.stamp;
+      ++n;
+    }
+  };
+  for (std::size_t i = 0; i < soup.size(); ++i) {
+    const SoupPolygon& o = soup[i];
+    if (o.id == t.id || !boxes_overlap(t, o)) continue;
+    // Two polygons of one solid operand never cross or overlap (NSI), and the
+    // solid operand's own winding numbers at t are known (0 / 1).
+    if (o.operand == t.operand && ctx.solid[t.operand]) continue;
+    bool front = false, back = false;
+    // Coplanar first: one plane comparison instead of exact zero tests of
+    // every vertex (stacks are full of them).
+    if (direction[i] != t_direction || !coplanar(t.poly.support, o.poly.support)) {
+      if (!touches_plane(o.poly, t.poly.support, sc.other_signs)) continue;
+      for (const std::int8_t v : sc.other_signs) {
+        front |= v > 0;
+        back |= v < 0;
+      }
+    }
+    sc.related.push_back(static_cast<std::uint32_t>(i));
+    sc.related_at.push_back(static_cast<std::uint32_t>(sc.related_signs.size()));
+    if (front || back) sc.related_signs.insert(sc.related_signs.end(), sc.other_signs.begin(), sc.other_signs.end());
+    if (!front && !back && !ctx.closed[o.operand]) front = back = true;  // coplanar, open operand
+    if (front) mark(sc.free_front, sc.n_front, o.operand);
+    if (back) mark(sc.free_back, sc.n_back, o.operand);
+  }
+}
+
+/// Starts t's pieces: t minus every coplanar polygon with a lower id, which
+/// represents the overlap (Fig. 8). Only enabled pieces are kept, and the
+/// loop stops as soon as t is covered: in a coplanar stack most polygons are
+/// covered by their first few lower-id neighbours.
+/// `parallel` holds t's class of parallel polygons (soup indices, ascending)
+/// and `at` t's position in it: only those can be coplanar with t.
+void disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx,
+                     std::span<const std::uint32_t> parallel, std::size_t at, LeafScratch& sc,
+                     std::vector<Piece>& pieces) {
   pieces.resize(1);
   pieces[0].poly = t.poly;  // reuses the capacity of the previous polygon's first piece
-  pieces[0].disabled = false;
-  std::vector<std::int8_t>& other_signs = scratch.other_signs;
-  std::vector<std::int8_t>& signs = scratch.signs;
-  std::vector<Plane>& cons = scratch.cons;
-  for (const SoupPolygon& o : soup) {
-    if (o.id == t.id || !boxes_overlap(t, o)) continue;
-    // Two polygons of one solid operand never cross or overlap (NSI).
-    if (o.operand == t.operand && ctx.solid[t.operand]) continue;
-    if (!touches_plane(o.poly, t.poly.support, other_signs)) continue;
-    const bool same_plane = coplanar(t.poly.support, o.poly.support);
-    const std::size_t n = pieces.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      if (pieces[i].disabled) continue;
-      if (same_plane) {
-        if (coplanar_overlap(pieces[i].poly, o.poly)) cut_by_coplanar(pieces, i, o.poly, o.id < t.id);
-      } else {
-        cut_by_transverse(pieces, i, t.poly.support, o.poly, other_signs, signs, cons);
+  std::vector<Piece>& next = sc.next;
+  Polygon neg, pos;
+  // Nearest lower ids first: in a stack, t's predecessors (its own face's
+  // other triangle, the previous copy) usually cover it after one or two cuts.
+  // What is left of t shrinks as it is cut: polygons outside the box of the
+  // remaining pieces are skipped without a plane test.
+  std::array<double, 3> lo = t.lo, hi = t.hi;
+  bool cut = false;
+  for (std::size_t k = parallel.size(); k-- > 0;) {
+    if (k == at) continue;
+    const SoupPolygon& o = soup[parallel[k]];
+    if (o.id >= t.id || box_disjoint(o, lo, hi)) continue;
+    if (o.operand == t.operand && ctx.solid[t.operand]) continue;  // NSI: no overlap
+    if (!coplanar(t.poly.support, o.poly.support)) continue;
+    next.clear();
+    cut = false;
+    for (Piece& p : pieces) {
+      if (!coplanar_overlap(p.poly, o.poly)) {
+        next.push_back(std::move(p));
+        continue;
       }
+      // The parts outside o stay; the part inside o is o's to emit.
+      for (const Plane& e : o.poly.edges) {
+        if (clip(p.poly, e, neg, pos) != ClipSide::Both) continue;
+        next.push_back({pos});
+        std::swap(p.poly, neg);
+      }
+      cut = true;
+    }
+    std::swap(pieces, next);
+    if (pieces.empty()) return;
+    if (cut) {
+      constexpr double kMargin = 1.0 / 65536;  // as update_bounds: covers the approximation error
+      lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+      hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+      for (const Piece& p : pieces)
+        for (const Point& v : p.poly.vertices)
+          for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], approx(v)[a] - kMargin);
+            hi[a] = std::max(hi[a], approx(v)[a] + kMargin);
+          }
+    }
+  }
+}
+
+/// Refines `pieces` (enabled pieces of t, already outside every lower-id
+/// coplanar polygon) until no other polygon crosses a piece's interior: C3
+/// cuts along transverse polygons and, where they can matter, C4 cuts along
+/// higher-id coplanar polygons' edges. Those cuts are needed only for open
+/// operands or when t lies in a box face (a closed operand's coplanar edge
+/// continues into a polygon leaving the plane, whose C3 cut is made anyway,
+/// unless that polygon lies outside the box).
+void refine(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, bool face, LeafScratch& sc,
+            std::vector<Piece>& pieces) {
+  for (std::size_t k = 0; k < sc.related.size(); ++k) {
+    const SoupPolygon& o = soup[sc.related[k]];
+    const std::size_t at = sc.related_at[k];
+    const std::size_t end = k + 1 < sc.related.size() ? sc.related_at[k + 1] : sc.related_signs.size();
+    if (at == end) {  // coplanar (a touching polygon has a vertex off the plane)
+      if (o.id < t.id || (ctx.closed[o.operand] && !face)) continue;
+      const std::size_t n = pieces.size();
+      for (std::size_t i = 0; i < n; ++i)
+        if (coplanar_overlap(pieces[i].poly, o.poly)) cut_by_coplanar(pieces, i, o.poly);
+    } else {
+      sc.other_signs.assign(sc.related_signs.begin() + at, sc.related_signs.begin() + end);
+      const std::size_t n = pieces.size();
+      for (std::size_t i = 0; i < n; ++i)
+        cut_by_transverse(pieces, i, t.poly.support, o.poly, sc.other_signs, sc.signs, sc.cons);
     }
   }
 }
@@ -342,22 +468,131 @@ bool classify_polygon(const Subproblem& pb, const SoupPolygon& t, Wnv& w_front, 
   return classify_piece(pb, t, t.poly, false, t.id, w_front, w_back, scratch);
 }
 
+namespace {
+
+/// Whether the built-in operation could be constant on one side of t for
+/// some values of the operands that are neither free nor known: `known_in`
+/// operands are known inside (t's solid operand behind t), `known` are known
+/// at all, `first_known` is operand 0's known state (-2: not known).
+/// Every built-in operation is monotone in the count, so the extremes decide.
+bool could_be_constant(const SolveContext& ctx, std::size_t free, bool first_free, std::size_t known,
+                       std::size_t known_in, int first_known) {
+  if (!ctx.op) return false;
+  const std::size_t unknown = ctx.operands - free - known;
+  if (first_free || first_known >= 0) {
+    const int first = first_free ? -1 : first_known;
+    return ctx.over_free(known_in, free, first) >= 0 || ctx.over_free(known_in + unknown, free, first) >= 0;
+  }
+  // Operand 0 is one of the unknown ones.
+  return ctx.over_free(known_in, free, 0) >= 0 || ctx.over_free(known_in + unknown - 1, free, 0) >= 0 ||
+         ctx.over_free(known_in + 1, free, 1) >= 0 || ctx.over_free(known_in + unknown, free, 1) >= 0;
+}
+
+/// The operation's value on one side of t given the winding numbers traced at
+/// one point, when it is the same everywhere along that side (-1 otherwise).
+int side_value(const SolveContext& ctx, const Wnv& w, const std::vector<std::uint32_t>& free, std::uint32_t stamp,
+               std::size_t n_free) {
+  std::size_t inside = 0;
+  for (std::size_t o = 0; o < w.size(); ++o) inside += w[o] != 0 && free[o] != stamp;
+  const int first = free[0] == stamp ? -1 : (w[0] != 0 ? 1 : 0);
+  return ctx.over_free(inside, n_free, first);
+}
+
+}  // namespace
+
+namespace {
+
+/// The direction class of a polygon's plane: the normal divided by the gcd of
+/// its components, pointing into the positive half of its first non-zero
+/// axis. Parallel planes (either orientation), and only they, share it.
+std::array<std::int64_t, 3> direction_key(const Plane& p) {
+  std::array<std::int64_t, 3> n{static_cast<std::int64_t>(p.a.raw()), static_cast<std::int64_t>(p.b.raw()),
+                                 static_cast<std::int64_t>(p.c.raw())};
+  std::int64_t g = 0;
+  for (const std::int64_t v : n) g = std::gcd(g, v < 0 ? -v : v);
+  if (g == 0) return n;
+  const std::int64_t first = n[0] != 0 ? n[0] : (n[1] != 0 ? n[1] : n[2]);
+  if (first < 0) g = -g;
+  for (std::int64_t& v : n) v /= g;
+  return n;
+}
+
+}  // namespace
+
 void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<OutputPolygon>& out) {
+  // Group the soup by plane direction once, so that the coplanar overlaps of
+  // a stack are found among its parallel polygons, not the whole leaf.
+  const std::size_t size = pb.soup.size();
+  std::vector<std::pair<std::array<std::int64_t, 3>, std::uint32_t>> keyed(size);
+  for (std::size_t i = 0; i < size; ++i)
+    keyed[i] = {direction_key(pb.soup[i].poly.support), static_cast<std::uint32_t>(i)};
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::uint32_t> order(size), class_begin(size), class_end(size), position(size);
+  for (std::size_t i = 0; i < size;) {
+    std::size_t j = i;
+    while (j < size && keyed[j].first == keyed[i].first) ++j;
+    for (std::size_t k = i; k < j; ++k) {
+      order[k] = keyed[k].second;
+      class_begin[keyed[k].second] = static_cast<std::uint32_t>(i);
+      class_end[keyed[k].second] = static_cast<std::uint32_t>(j);
+      position[keyed[k].second] = static_cast<std::uint32_t>(k - i);
+    }
+    i = j;
+  }
+  keyed = {};
   Wnv w_front, w_back;
   LeafScratch scratch;
   std::vector<Piece> pieces;
+  const auto classify_or_throw = [&](const SoupPolygon& t, const Polygon& f, std::uint64_t seed) {
+    if (!classify_piece(pb, t, f, ctx.solid[t.operand] != 0, seed, w_front, w_back, scratch))
+      throw Error("ember: could not classify a polygon piece (no non-degenerate trace path found); "
+                  "this input is too degenerate for the current implementation");
+  };
+  const auto emit = [&](const SoupPolygon& t, const Polygon& f, bool in_front, bool in_back) {
+    if (in_front == in_back) return;
+    out.push_back({f, t.id, t.operand, in_front});
+  };
   for (const SoupPolygon& t : pb.soup) {
-    build_bsp(pb.soup, t, ctx, scratch, pieces);
-    for (std::size_t n = 0; n < pieces.size(); ++n) {
-      if (pieces[n].disabled) continue;
-      if (!classify_piece(pb, t, pieces[n].poly, ctx.solid[t.operand] != 0, (static_cast<std::uint64_t>(t.id) << 20) ^ n,
-                          w_front, w_back,
-                          scratch))
-        throw Error("ember: could not classify a polygon piece (no non-degenerate trace path found); "
-                    "this input is too degenerate for the current implementation");
-      const bool in_front = ctx.inside(w_front), in_back = ctx.inside(w_back);
-      if (in_front == in_back) continue;
-      out.push_back({pieces[n].poly, t.id, t.operand, in_front});
+    const std::size_t ti = static_cast<std::size_t>(&t - pb.soup.data());
+    disable_covered(pb.soup, t, ctx,
+                    std::span<const std::uint32_t>(order.data() + class_begin[ti], class_end[ti] - class_begin[ti]),
+                    position[ti], scratch, pieces);
+    if (pieces.empty()) continue;
+    gather(pb.soup, t, ctx, class_begin, scratch);
+    const bool face = on_box_face(t, pb.box);
+    // Piece-level early termination (Section 4.5.2 applied to one polygon):
+    // if the operands whose winding numbers can change along either side of t
+    // cannot change the result there, one trace classifies the whole piece and
+    // no further cut is needed. Only when t has a known side (inside the box).
+    const bool solid = ctx.solid[t.operand] != 0;
+    const bool maybe_constant =
+        !face && could_be_constant(ctx, scratch.n_front, scratch.free_front[0] == scratch.stamp, solid ? 1 : 0, 0,
+                                   solid && t.operand == 0 ? 0 : -2) &&
+        could_be_constant(ctx, scratch.n_back, scratch.free_back[0] == scratch.stamp, solid ? 1 : 0, solid ? 1 : 0,
+                          solid && t.operand == 0 ? 1 : -2);
+    const std::size_t n_pieces = pieces.size();
+    for (std::size_t n = 0; n < n_pieces; ++n) {
+      const std::uint64_t seed = (static_cast<std::uint64_t>(t.id) << 20) ^ (n << 10);
+      bool traced = false;
+      if (maybe_constant) {
+        classify_or_throw(t, pieces[n].poly, seed);
+        traced = true;
+        const int vf = side_value(ctx, w_front, scratch.free_front, scratch.stamp, scratch.n_front);
+        const int vb = side_value(ctx, w_back, scratch.free_back, scratch.stamp, scratch.n_back);
+        if (vf >= 0 && vb >= 0) {
+          emit(t, pieces[n].poly, vf != 0, vb != 0);
+          continue;
+        }
+      }
+      std::vector<Piece>& sub = scratch.sub;
+      sub.resize(1);
+      sub[0].poly = pieces[n].poly;
+      refine(pb.soup, t, ctx, face, scratch, sub);
+      for (std::size_t m = 0; m < sub.size(); ++m) {
+        // Uncut: the trace made for the early termination still holds.
+        if (!(traced && sub.size() == 1)) classify_or_throw(t, sub[m].poly, seed + m);
+        emit(t, sub[m].poly, ctx.inside(w_front), ctx.inside(w_back));
+      }
     }
   }
 }

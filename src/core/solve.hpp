@@ -3,8 +3,10 @@
 // propagation (Section 4.2) down to leaves that resolve intersections with
 // polygon-local BSPs (4.3) and classify pieces by segment tracing (4.4).
 #include <functional>
+#include <optional>
 #include <vector>
 
+#include "core/indicator.hpp"
 #include "core/soup.hpp"
 
 namespace ember::core {
@@ -20,13 +22,26 @@ struct OutputPolygon {
 struct SolveContext {
   std::size_t operands = 0;
   std::function<bool(const Wnv&)> inside;  ///< indicator: WNV -> inside the result
-  /// The same indicator on "inside operand i" flags (w_i != 0), when it
-  /// depends on nothing else (every built-in operation); enables pruning.
-  std::function<bool(const std::vector<char>&)> inside_flags;
+  /// The built-in operation behind `inside` (empty for a custom indicator).
+  /// Every built-in operation depends only on "inside operand i" flags
+  /// (w_i != 0); knowing which one lets early terminations decide exactly
+  /// whether unknown flags can change the result (`over_free`).
+  std::optional<Operation> op;
+  int min_k = 1;
+  /// Per operand: closed (every directed edge matched by an opposite one), so
+  /// its winding number changes only across its surface. Lets the leaf skip
+  /// cuts along coplanar polygons' edges (see docs/core.md).
+  std::vector<char> closed;
   /// Per operand: solid (closed, outward, no self-intersections, no nested or
   /// touching components: w in {0, 1}). Enables the shortcuts of Fig. 11.
   std::vector<char> solid;
   std::size_t leaf_size = 64;  ///< subdivide while a subproblem has more polygons (tuned: docs/benchmark.md)
+
+  /// inside_over_free for the built-in operation; -1 (may change) for a
+  /// custom indicator.
+  int over_free(std::size_t inside_count, std::size_t free, int first) const {
+    return op ? inside_over_free(*op, min_k, operands, inside_count, free, first) : -1;
+  }
 };
 
 /// A self-contained subproblem: polygons clipped to a closed integer box and a

@@ -252,27 +252,19 @@ bool emit_single_solid(Subproblem& pb, const SolveContext& ctx, const SoupSummar
 }  // namespace
 
 namespace {
-/// indicator_constant for a subproblem whose operands with polygons are `present`.
+/// indicator_constant for a subproblem whose operands with polygons are `present`:
+/// the other operands keep the reference point's flags, the present ones are free.
 bool indicator_constant(const Subproblem& pb, const SolveContext& ctx, const std::vector<std::uint32_t>& present) {
-  if (!ctx.inside_flags) return false;
-  std::vector<char> flags(ctx.operands);
-  for (std::size_t i = 0; i < ctx.operands; ++i) flags[i] = pb.ref_w[i] != 0;
-  std::vector<std::uint32_t> free(present.begin(), present.end());
-  std::sort(free.begin(), free.end());
-  constexpr std::size_t kMaxEnumerated = 12;  // 4096 evaluations at most
-  if (free.size() > kMaxEnumerated) return false;
-  bool first = true, value = false;
-  for (std::uint32_t mask = 0; mask < (1u << free.size()); ++mask) {
-    for (std::size_t b = 0; b < free.size(); ++b) flags[free[b]] = (mask >> b) & 1;
-    const bool v = ctx.inside_flags(flags);
-    if (first) {
-      value = v;
-      first = false;
-    } else if (v != value) {
-      return false;
-    }
+  if (!ctx.op) return false;
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < ctx.operands; ++i) inside += pb.ref_w[i] != 0;
+  bool first_present = false;
+  for (const std::uint32_t o : present) {
+    inside -= pb.ref_w[o] != 0;
+    first_present |= o == 0;
   }
-  return true;
+  const int first = first_present ? -1 : (pb.ref_w[0] != 0 ? 1 : 0);
+  return ctx.over_free(inside, present.size(), first) >= 0;
 }
 }  // namespace
 

@@ -111,6 +111,17 @@ inline Mesh box(Vec3d lo, Vec3d hi) {
   return m;
 }
 
+/// A coplanar pile: n unit cubes (12 triangles each), cube i shifted by
+/// i * step along x. Every y and z face plane holds a stack of up to
+/// 1 / step overlapping faces; the union is the box
+/// [0, 1 + (n - 1) step] x [0, 1] x [0, 1].
+inline std::vector<Mesh> shifted_cube_pile(int n, double step) {
+  std::vector<Mesh> cubes;
+  cubes.reserve(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) cubes.push_back(box({i * step, 0, 0}, {1 + i * step, 1, 1}));
+  return cubes;
+}
+
 /// Axis-aligned box as 6 quads.
 inline Mesh box_quads(Vec3d lo, Vec3d hi) {
   Mesh m;
