@@ -110,6 +110,12 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
   if (!a.quiet)
     for (const std::string& w : r.warnings)
       std::fprintf(stderr, "ember: warning: %s\n", name_operand(w, operands.names).c_str());
+  if (ember::format_from_path(a.output) == ember::MeshFormat::Stl && !a.quiet)
+    if (const std::size_t bad = ember::stl_degenerate_triangles(r.mesh))
+      std::fprintf(stderr,
+                   "ember: warning: %s: %zu triangles become degenerate in STL's float32 coordinates; "
+                   "use .ply, .obj or .off to keep the double coordinates\n",
+                   a.output.c_str(), bad);
   write_atomically(r.mesh, a.output);
   if (a.stats) ember::cli::print_stats(r, operation_name(op), operands.names);
   return 0;

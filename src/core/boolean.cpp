@@ -322,7 +322,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   }
   const auto solved = std::chrono::steady_clock::now();
   result.stats.solve_ms = ms_between(proved, solved);
-  report(options, "output", 0.9);
+  report(options, "export", 0.9);
   if (options.output == BooleanOptions::Output::Polygons) {
     arena.execute([&] { result.mesh = export_mesh(polys, q, sources, result.provenance, result.stats.dropped_slivers); });
   } else {

@@ -1,6 +1,7 @@
 // STL, binary and ASCII. STL stores each triangle with its own three corners,
 // so identical positions are welded here into shared vertices: later stages
 // need an indexed mesh to tell whether the surface is closed.
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -271,6 +272,27 @@ std::string write_stl(const Mesh& mesh) {
     }
   }
   return out;
+}
+
+std::size_t stl_degenerate_triangles(const Mesh& mesh) {
+  auto f32 = [&](std::uint32_t v) {
+    const Vec3d& p = mesh.vertices[v];
+    return std::array<double, 3>{static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)};
+  };
+  std::size_t degenerate = 0;
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    const auto face = mesh.face(f);
+    for (std::size_t k = 1; k + 1 < face.size(); ++k) {
+      const auto a = f32(face[0]), b = f32(face[k]), c = f32(face[k + 1]);
+      // In extended precision: a zero cross product is degenerate for sure; a
+      // triangle that only nearly collapses may be missed (this is a warning count).
+      using ld = long double;
+      const ld ux = ld(b[0]) - a[0], uy = ld(b[1]) - a[1], uz = ld(b[2]) - a[2];
+      const ld vx = ld(c[0]) - a[0], vy = ld(c[1]) - a[1], vz = ld(c[2]) - a[2];
+      degenerate += uy * vz - uz * vy == 0 && uz * vx - ux * vz == 0 && ux * vy - uy * vx == 0;
+    }
+  }
+  return degenerate;
 }
 
 }  // namespace ember

@@ -139,3 +139,13 @@ TEST(Stl, WriterRejectsCoordinatesBeyondFloatRange) {
 
 }  // namespace
 }  // namespace ember
+
+TEST(Stl, CountsTrianglesThatFloat32MakesDegenerate) {
+  ember::Mesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1 + 1e-12, 0, 0}, {1, 1e-12, 0}};
+  m.add_face({0, 1, 2});  // fine in float
+  m.add_face({1, 3, 4});  // its corners all round to (1, 0, 0) in float
+  EXPECT_EQ(ember::stl_degenerate_triangles(m), 1u);
+  m.add_face({0, 2, 1});
+  EXPECT_EQ(ember::stl_degenerate_triangles(m), 1u);
+}

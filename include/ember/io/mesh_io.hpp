@@ -60,6 +60,10 @@ Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name,
 std::string write_obj(const Mesh& mesh);
 /// Binary STL: faces fan-triangulated, float coordinates, normals from positions.
 std::string write_stl(const Mesh& mesh);
+/// Triangles (of a fan triangulation) that STL's float32 coordinates make
+/// degenerate: two corners equal or all three collinear after the rounding.
+/// STL is a second rounding after ember's one rounding to double.
+std::size_t stl_degenerate_triangles(const Mesh& mesh);
 /// OFF with shortest round-trip decimal coordinates.
 std::string write_off(const Mesh& mesh);
 /// Binary little-endian PLY with double coordinates (reads back bit-exact).

@@ -38,10 +38,10 @@ struct Incidence {
 
 }  // namespace
 
-std::size_t remove_collinear_vertices(Regions& regions, std::size_t vertex_count) {
+std::vector<Removal> remove_collinear_vertices(Regions& regions, std::size_t vertex_count) {
   std::vector<BoundaryEdge>& e = regions.edges;
   Incidence out(e, vertex_count, true), in(e, vertex_count, false);
-  std::size_t removed = 0;
+  std::vector<Removal> removed;
   for (std::uint32_t v = 0; v < vertex_count; ++v) {
     if (out.count(v) != 2 || in.count(v) != 2) continue;
     std::uint32_t o1 = out.at(v, 0), o2 = out.at(v, 1), i1 = in.at(v, 0), i2 = in.at(v, 1);
@@ -61,9 +61,48 @@ std::size_t remove_collinear_vertices(Regions& regions, std::size_t vertex_count
     e[o2].alive = false;
     in.replace(b, o1, i1);
     in.replace(a, o2, i2);
-    ++removed;
+    removed.push_back({v, i1, o1, i2, o2});
   }
   return removed;
+}
+
+std::vector<std::uint32_t> restore_vertices(Regions& regions, const std::vector<Removal>& removals,
+                                            const std::vector<char>& failed, std::vector<char>& undone) {
+  std::vector<BoundaryEdge>& e = regions.edges;
+  // A removal must be undone if it touches a failed region, or if it changed
+  // an edge that an undone earlier removal changed (it saw that state).
+  std::vector<char> undo(removals.size(), 0), dirty(e.size(), 0);
+  for (std::size_t k = 0; k < removals.size(); ++k) {
+    const Removal& r = removals[k];
+    const std::uint32_t rec[4] = {r.in_1, r.out_1, r.in_2, r.out_2};
+    if (undone[k]) {  // put back by an earlier call: its edges are in their old state
+      for (const std::uint32_t x : rec) dirty[x] = 1;
+      continue;
+    }
+    bool must = failed[e[r.in_1].region] || failed[e[r.in_2].region];
+    for (const std::uint32_t x : rec) must = must || dirty[x];
+    if (!must) continue;
+    undo[k] = 1;
+    for (const std::uint32_t x : rec) dirty[x] = 1;
+  }
+  std::vector<std::uint32_t> changed;
+  for (std::size_t k = removals.size(); k-- > 0;) {
+    if (!undo[k]) continue;
+    undone[k] = 1;
+    const Removal& r = removals[k];
+    // Splice v back: in -> v -> (what out used to lead to), out alive again.
+    e[r.in_1].to = r.v;
+    e[r.in_1].next = r.out_1;
+    e[r.out_1].alive = true;
+    e[r.in_2].to = r.v;
+    e[r.in_2].next = r.out_2;
+    e[r.out_2].alive = true;
+    for (const std::uint32_t reg : {e[r.in_1].region, e[r.in_2].region})
+      if (!failed[reg]) changed.push_back(reg);
+  }
+  std::sort(changed.begin(), changed.end());
+  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+  return changed;
 }
 
 }  // namespace ember::core

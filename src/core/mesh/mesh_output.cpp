@@ -44,26 +44,48 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
   const OutputVertices verts = exact_weld(polys, q);
   const Cycles cycles = insert_tjunction_vertices(polys, verts, out.stats.tjunctions);
   Regions regions = build_regions(polys, cycles, verts);
-  out.stats.collinear_removed = remove_collinear_vertices(regions, verts.exact.size());
+  const std::vector<Removal> removals = remove_collinear_vertices(regions, verts.exact.size());
   out.stats.regions = regions.regions.size();
 
-  std::vector<RegionTriangles> per_region(regions.regions.size());
-  tbb::parallel_for(std::size_t{0}, regions.regions.size(), [&](std::size_t r) {
-    RegionTriangles& rt = per_region[r];
-    const Region& region = regions.regions[r];
-    if (triangulate_region(regions, static_cast<std::uint32_t>(r), verts, rt.tris)) {
-      rt.source.assign(rt.tris.size(), region.source);
-      return;
-    }
+  const std::size_t n_regions = regions.regions.size();
+  std::vector<RegionTriangles> per_region(n_regions);
+  std::vector<char> failed(n_regions, 0), undone(removals.size(), 0);
+  auto triangulate = [&](std::span<const std::uint32_t> which) {
+    tbb::parallel_for(std::size_t{0}, which.size(), [&](std::size_t i) {
+      const std::uint32_t r = which[i];
+      RegionTriangles& rt = per_region[r];
+      rt.tris.clear();
+      if (triangulate_region(regions, r, verts, rt.tris))
+        rt.source.assign(rt.tris.size(), regions.regions[r].source);
+      else
+        failed[r] = 1;
+    });
+  };
+  std::vector<std::uint32_t> all(n_regions);
+  for (std::uint32_t r = 0; r < n_regions; ++r) all[r] = r;
+  triangulate(all);
+  // A failed region is triangulated piece by piece below, and its pieces keep
+  // every vertex: put the removed ones back on both sides and redo the
+  // neighbours that changed (which may fail in turn).
+  for (;;) {
+    std::vector<std::uint32_t> changed = restore_vertices(regions, removals, failed, undone);
+    if (changed.empty()) break;
+    triangulate(changed);
+  }
+  for (const char u : undone) out.stats.collinear_removed += !u;
+  tbb::parallel_for(std::size_t{0}, n_regions, [&](std::size_t r) {
+    if (!failed[r]) return;
     // Fallback: each convex piece on its own (always possible: a convex
     // polygon with points on its sides has a strictly convex ear).
+    RegionTriangles& rt = per_region[r];
+    const Region& region = regions.regions[r];
     rt.fallback = true;
+    rt.tris.clear();
+    rt.source.clear();
     for (const std::uint32_t p : region.pieces) {
-      const std::size_t before = rt.tris.size();
       std::vector<std::uint32_t> loop = piece_loop(polys[p], cycles[p]);
       if (loop.size() >= 3) triangulate_loop(std::move(loop), region.plane, verts, rt.tris);
       rt.source.resize(rt.tris.size(), polys[p].id);
-      (void)before;
     }
   });
 

@@ -75,8 +75,22 @@ struct Regions {
 /// Step 3 (merge). `cycles` are the polygons after step 2, unflipped.
 Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles, const OutputVertices& verts);
 
-/// Step 3 (collinear vertices). Returns how many vertices were removed.
-std::size_t remove_collinear_vertices(Regions& regions, std::size_t vertex_count);
+/// One removal of step 3b: vertex v spliced out of edges in_1 (region 1) and
+/// in_2 (region 2), killing out_1 and out_2.
+struct Removal {
+  std::uint32_t v, in_1, out_1, in_2, out_2;
+};
+
+/// Step 3 (collinear vertices). Returns the removals in the order made.
+std::vector<Removal> remove_collinear_vertices(Regions& regions, std::size_t vertex_count);
+
+/// Puts back every removal that touches a region in `failed` (and every later
+/// removal that touched the same edges), newest first, so that regions
+/// triangulated piece by piece keep matching their neighbours. Returns the
+/// regions outside `failed` whose boundary changed.
+/// `undone` (one flag per removal) carries what earlier calls put back.
+std::vector<std::uint32_t> restore_vertices(Regions& regions, const std::vector<Removal>& removals,
+                                            const std::vector<char>& failed, std::vector<char>& undone);
 
 /// Orientation of a, b, c seen from the positive side of `plane` (+1 counter-clockwise).
 int orient_in_plane(const Point& a, const Point& b, const Point& c, const Plane& plane);

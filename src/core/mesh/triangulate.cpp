@@ -73,15 +73,22 @@ bool collect_loops(const Regions& regions, std::uint32_t region, std::vector<std
 
 /// +1 for a counter-clockwise loop, -1 clockwise, 0 if undecidable here: the
 /// turn at its lexicographically smallest vertex, which is a corner of the
-/// loop's convex hull.
+/// loop's convex hull. A loop may pass that vertex more than once (regions
+/// touching themselves there); each pass is then a corner whose wedge lies in
+/// a half-plane, so all passes turn the same way and any of them decides.
 int loop_orientation(const Ctx& k, const std::vector<std::uint32_t>& loop) {
   std::size_t m = 0;
   for (std::size_t i = 1; i < loop.size(); ++i)
     if (compare_lex(k.pt(loop[i]), k.pt(loop[m])) < 0) m = i;
-  for (std::size_t i = 0; i < loop.size(); ++i)
-    if (i != m && loop[i] == loop[m]) return 0;  // pinched at the extreme vertex
   const std::size_t n = loop.size();
-  return k.orient(loop[(m + n - 1) % n], loop[m], loop[(m + 1) % n]);
+  int turn = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (loop[i] != loop[m]) continue;
+    const int o = k.orient(loop[(i + n - 1) % n], loop[i], loop[(i + 1) % n]);
+    if (o == 0 || (turn != 0 && o != turn)) return 0;
+    turn = o;
+  }
+  return turn;
 }
 
 double approx_dist2(const Ctx& k, std::uint32_t a, std::uint32_t b) {
