@@ -6,7 +6,7 @@
 // A mesh is a (vertices, faces) pair: float64 (n, 3) and integer (m, k >= 3)
 // arrays, or any object with .vertices and .faces (trimesh.Trimesh). Results
 // are (vertices float64 (n, 3), faces int64 (m, 3)) tuples: ember's convex
-// output polygons are fan-triangulated, which is exact for convex polygons.
+// output is already a triangle mesh; files read as polygons are fan-triangulated.
 // Errors are ember.Error (a ValueError) with the library's message.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
