@@ -29,15 +29,17 @@ def read(path):
     return verts, faces
 
 
-def report(path):
-    verts, faces = read(path)
+def edge_counts(faces):
+    """(undirected edges, unbalanced, non-manifold) of polygon faces given as
+    vertex-index lists: an edge is unbalanced when its uses a->b and b->a differ
+    in number, non-manifold when balanced with more than one use each way."""
     directed = Counter()
     for f in faces:
         for i in range(len(f)):
             directed[(f[i], f[(i + 1) % len(f)])] += 1
     unbalanced = nonmanifold = 0
     seen = set()
-    for (a, b), n in directed.items():
+    for (a, b) in directed:
         key = (min(a, b), max(a, b))
         if key in seen:
             continue
@@ -47,10 +49,16 @@ def report(path):
             unbalanced += 1
         elif fwd > 1:
             nonmanifold += 1
+    return len(seen), unbalanced, nonmanifold
+
+
+def report(path):
+    verts, faces = read(path)
+    edges, unbalanced, nonmanifold = edge_counts(faces)
     dup = len(verts) - len(set(verts))
     tris = sum(len(f) - 2 for f in faces)
     closed = unbalanced == 0
-    print(f"{path}: faces={len(faces)} triangles={tris} vertices={len(verts)} edges={len(seen)} "
+    print(f"{path}: faces={len(faces)} triangles={tris} vertices={len(verts)} edges={edges} "
           f"unbalanced={unbalanced} nonmanifold={nonmanifold} repeated_positions={dup} "
           f"{'CLOSED' if closed else 'OPEN'}")
     return closed
