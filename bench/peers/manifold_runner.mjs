@@ -9,20 +9,9 @@
 // back with getMesh() (Manifold evaluates lazily, so getMesh is where the work
 // happens). Failures (constructor errors, non-OK status) are recorded per
 // operation. Output: one JSON line per operation, like the C++ runners.
-import { readFileSync } from 'node:fs';
 import { performance } from 'node:perf_hooks';
 import Module from 'manifold-3d';
-
-function readBin(path) {
-  const buf = readFileSync(path);
-  if (buf.toString('latin1', 0, 4) !== 'EMB1') throw new Error(`malformed mesh file ${path}`);
-  const nv = Number(buf.readBigUInt64LE(4));
-  const nt = Number(buf.readBigUInt64LE(12));
-  const xyz = new Float64Array(buf.buffer.slice(buf.byteOffset + 20, buf.byteOffset + 20 + 24 * nv));
-  const triStart = buf.byteOffset + 20 + 24 * nv;
-  const tri = new Uint32Array(buf.buffer.slice(triStart, triStart + 12 * nt));
-  return { vert: Float32Array.from(xyz), tri, nt };
-}
+import { readBin } from './meshbin.mjs';
 
 function signedVolume(vert, tri, numProp) {
   let vol = 0;

@@ -2,24 +2,14 @@
 // (bench/watertight/measure.py --manifold-quality). Same input handling as
 // bench/peers/manifold_runner.mjs (EMB1 files, float32 positions); run with cwd bench/peers.
 //   node ../watertight/manifold_dump.mjs A.bin B.bin OP OUT.obj
-import { readFileSync, writeFileSync } from 'node:fs';
+import { writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { pathToFileURL } from 'node:url';
+import { readBin } from '../peers/meshbin.mjs';
 
 // manifold-3d is installed in bench/peers/node_modules: resolve it from the working directory
 const require = createRequire(process.cwd() + '/');
 const { default: Module } = await import(pathToFileURL(require.resolve('manifold-3d/manifold.js')).href);
-
-function readBin(path) {
-  const buf = readFileSync(path);
-  if (buf.toString('latin1', 0, 4) !== 'EMB1') throw new Error(`malformed mesh file ${path}`);
-  const nv = Number(buf.readBigUInt64LE(4));
-  const nt = Number(buf.readBigUInt64LE(12));
-  const xyz = new Float64Array(buf.buffer.slice(buf.byteOffset + 20, buf.byteOffset + 20 + 24 * nv));
-  const triStart = buf.byteOffset + 20 + 24 * nv;
-  const tri = new Uint32Array(buf.buffer.slice(triStart, triStart + 12 * nt));
-  return { vert: Float32Array.from(xyz), tri };
-}
 
 const [fa, fb, op, out] = process.argv.slice(2);
 const wasm = await Module();

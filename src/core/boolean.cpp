@@ -74,24 +74,6 @@ struct Source {
   std::uint32_t operand, face;
 };
 
-/// Twice the area vector of a rounded face, from differences to its first
-/// vertex in extended precision, is exactly zero.
-bool rounded_area_is_zero(const Mesh& mesh, const std::vector<std::uint32_t>& face) {
-  using ld = long double;
-  const Vec3d& o = mesh.vertices[face[0]];
-  ld n[3] = {0, 0, 0};
-  for (std::size_t k = 1; k + 1 < face.size(); ++k) {
-    const Vec3d& a = mesh.vertices[face[k]];
-    const Vec3d& b = mesh.vertices[face[k + 1]];
-    const ld ax = ld(a.x) - o.x, ay = ld(a.y) - o.y, az = ld(a.z) - o.z;
-    const ld bx = ld(b.x) - o.x, by = ld(b.y) - o.y, bz = ld(b.z) - o.z;
-    n[0] += ay * bz - az * by;
-    n[1] += az * bx - ax * bz;
-    n[2] += ax * by - ay * bx;
-  }
-  return n[0] == 0 && n[1] == 0 && n[2] == 0;
-}
-
 Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer& q, const std::vector<Source>& sources,
                  std::vector<Provenance>& provenance, std::size_t& dropped) {
   struct Key {
@@ -137,7 +119,7 @@ Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer&
     while (face.size() > 1 && face.front() == face.back()) face.pop_back();
     // An exact sliver can round to collinear doubles; such a face has no area
     // in the caller's units and is dropped rather than emitted degenerate.
-    if (face.size() < 3 || rounded_area_is_zero(mesh, face)) {
+    if (face.size() < 3 || core::rounded_area_is_zero(mesh.vertices, face)) {
       ++dropped;
       continue;
     }

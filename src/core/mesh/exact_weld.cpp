@@ -78,7 +78,6 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
       i = j;
     }
   });
-  keys = {};
 
   // Number classes by their representative's position in output order.
   corners.ids.resize(n);
@@ -90,11 +89,12 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
       corners.ids[c] = corners.ids[rep[c]];
     }
   }
+  // Each class's rounded position is its representative's key: rounded once.
   out.rounded.resize(out.exact.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.exact.size(), 4096), [&](const auto& r) {
-    for (std::size_t v = r.begin(); v != r.end(); ++v) {
-      const Vec3d x = q.dequantize(out.exact[v]);
-      out.rounded[v] = {x.x + 0.0, x.y + 0.0, x.z + 0.0};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      const std::uint32_t c = keys[k].corner;
+      if (rep[c] == c) out.rounded[corners.ids[c]] = {keys[k].x, keys[k].y, keys[k].z};
     }
   });
   return out;

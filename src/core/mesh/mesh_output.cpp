@@ -10,16 +10,6 @@ namespace ember::core {
 
 namespace {
 
-/// The rounded corners span no area (extended-precision cross product of
-/// differences, exact for doubles whose exponents are close).
-bool rounded_degenerate(const std::vector<Vec3d>& pos, const std::array<std::uint32_t, 3>& t) {
-  using ld = long double;
-  const Vec3d &o = pos[t[0]], &a = pos[t[1]], &b = pos[t[2]];
-  const ld ax = ld(a.x) - o.x, ay = ld(a.y) - o.y, az = ld(a.z) - o.z;
-  const ld bx = ld(b.x) - o.x, by = ld(b.y) - o.y, bz = ld(b.z) - o.z;
-  return ay * bz - az * by == 0 && az * bx - ax * bz == 0 && ax * by - ay * bx == 0;
-}
-
 /// A piece's cycle around its outward normal, repeated ids dropped.
 std::vector<std::uint32_t> piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids) {
   std::vector<std::uint32_t> loop;
@@ -37,6 +27,21 @@ struct RegionTriangles {
 };
 
 }  // namespace
+
+bool rounded_area_is_zero(const std::vector<Vec3d>& pos, std::span<const std::uint32_t> face) {
+  using ld = long double;
+  const Vec3d& o = pos[face[0]];
+  ld n[3] = {0, 0, 0};
+  for (std::size_t k = 1; k + 1 < face.size(); ++k) {
+    const Vec3d &a = pos[face[k]], &b = pos[face[k + 1]];
+    const ld ax = ld(a.x) - o.x, ay = ld(a.y) - o.y, az = ld(a.z) - o.z;
+    const ld bx = ld(b.x) - o.x, by = ld(b.y) - o.y, bz = ld(b.z) - o.z;
+    n[0] += ay * bz - az * by;
+    n[1] += az * bx - ax * bz;
+    n[2] += ax * by - ay * bx;
+  }
+  return n[0] == 0 && n[1] == 0 && n[2] == 0;
+}
 
 MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quantizer& q,
                                std::span<const Provenance> sources) {
@@ -102,7 +107,7 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
         if (id == UINT32_MAX) id = mesh.add_vertex(verts.rounded[rt.tris[i][c]]);
         t[c] = id;
       }
-      if (rounded_degenerate(mesh.vertices, t)) ++out.stats.rounded_degenerate;
+      if (rounded_area_is_zero(mesh.vertices, t)) ++out.stats.rounded_degenerate;
       mesh.add_face({t[0], t[1], t[2]});
       out.provenance.push_back(sources[rt.source[i]]);
     }

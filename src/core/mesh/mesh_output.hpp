@@ -106,6 +106,11 @@ bool triangulate_region(const Regions& regions, std::uint32_t region, const Outp
 bool triangulate_loop(std::vector<std::uint32_t> loop, const Plane& plane, const OutputVertices& verts,
                       std::vector<std::array<std::uint32_t, 3>>& out);
 
+/// Twice the area vector of a face of rounded (double) vertices, summed from
+/// differences to its first vertex in extended precision, is exactly zero.
+/// Shared by the mesh stage (rounded_degenerate) and the polygon export (slivers).
+bool rounded_area_is_zero(const std::vector<Vec3d>& pos, std::span<const std::uint32_t> face);
+
 struct MeshOutputStats {
   std::size_t tjunctions = 0;          ///< vertices inserted into edges
   std::size_t collinear_removed = 0;   ///< boundary vertices removed on both sides

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <queue>
+#include <span>
 
 #include "core/mesh/mesh_output.hpp"
 #include "ember/geometry/exact_order.hpp"
@@ -99,7 +100,7 @@ double approx_dist2(const Ctx& k, std::uint32_t a, std::uint32_t b) {
 /// Joins `hole` into `outer` with a bridge from the hole's lexicographically
 /// largest vertex to the nearest outer vertex it sees. False if none found.
 bool bridge_hole(const Ctx& k, std::vector<std::uint32_t>& outer, const std::vector<std::uint32_t>& hole,
-                 const std::vector<std::vector<std::uint32_t>>& others) {
+                 std::span<const std::vector<std::uint32_t>> others) {
   const std::size_t hn = hole.size();
   std::size_t hi = 0;
   for (std::size_t i = 1; i < hn; ++i)
@@ -259,7 +260,7 @@ bool triangulate_region(const Regions& regions, std::uint32_t region, const Outp
   }
   if (outer.empty()) return false;
   for (std::size_t i = 0; i < holes.size(); ++i) {
-    const std::vector<std::vector<std::uint32_t>> rest(holes.begin() + static_cast<std::ptrdiff_t>(i) + 1, holes.end());
+    const std::span<const std::vector<std::uint32_t>> rest(holes.data() + i + 1, holes.size() - i - 1);
     if (!bridge_hole(k, outer, holes[i], rest)) return false;
   }
   return triangulate_loop(std::move(outer), plane, verts, out);
