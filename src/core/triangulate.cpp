@@ -2,6 +2,7 @@
 #include "core/triangulate.hpp"
 
 #include <cstdlib>
+#include <type_traits>
 
 namespace ember::core {
 
@@ -15,12 +16,17 @@ struct P2 {
 
 /// Twice the signed area of (a, b, c): coordinates <= 2^26 apart, so the
 /// products stay below 2^54 (exact in int128 with room to spare).
+static_assert(std::is_same_v<decltype(CoordDiff{} * CoordDiff{} - CoordDiff{} * CoordDiff{}), Int<55>> &&
+                  Int<55>::bits < 127,
+              "grid orientation: 27 + 27 = 54 bits per product, difference -> 55, fits int128");
 i128 orient(const P2& a, const P2& b, const P2& c) {
   return i128(b.u - a.u) * (c.v - a.v) - i128(b.v - a.v) * (c.u - a.u);
 }
 
 /// Newell normal, exact: each term is below 2^27 * 2^27 = 2^54, so any face
 /// with fewer than 2^70 corners fits in int128.
+static_assert(std::is_same_v<decltype(CoordDiff{} * CoordDiff{}), Int<54>> && 54 + 70 < 127,
+              "Newell term: 27 + 27 = 54 bits; 2^70 terms still fit int128");
 std::array<i128, 3> newell(std::span<const IntPoint> c) {
   std::array<i128, 3> n{0, 0, 0};
   for (std::size_t i = 0; i < c.size(); ++i) {
