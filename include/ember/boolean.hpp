@@ -83,12 +83,6 @@ struct BooleanOptions {
   ProgressCallback progress;
 };
 
-/// Where an output polygon came from.
-struct Provenance {
-  std::uint32_t operand;  ///< index into the operands
-  std::uint32_t face;     ///< face index within that operand
-};
-
 /// What the solid check (BooleanOptions::detect_solid) found for one operand.
 enum class SolidStatus {
   NotChecked,        ///< detect_solid off, or no triangles left on the grid
@@ -133,6 +127,10 @@ struct BooleanStats {
   /// Phases of time_ms: setup (validation, quantization, triangles, closedness),
   /// solid proof, the exact core, and output (mesh stage or polygon export).
   double setup_ms = 0, proof_ms = 0, solve_ms = 0, output_ms = 0;
+  /// Steps of the mesh stage inside output_ms: exact weld, T-junction
+  /// insertion, region merge with collinear-vertex removal, triangulation and
+  /// assembly of the indexed mesh (zero with Output::Polygons).
+  double weld_ms = 0, tjunction_ms = 0, regions_ms = 0, triangulate_ms = 0;
   int threads = 1;
 };
 

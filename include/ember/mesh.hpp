@@ -9,6 +9,14 @@
 
 namespace ember {
 
+/// Where an output face of a Boolean came from (ember::boolean's result;
+/// PLY output can carry it as face properties).
+struct Provenance {
+  std::uint32_t operand;  ///< index into the operands
+  std::uint32_t face;     ///< face index within that operand
+  friend bool operator==(const Provenance&, const Provenance&) = default;
+};
+
 struct Vec3d {
   double x = 0, y = 0, z = 0;
   friend bool operator==(const Vec3d&, const Vec3d&) = default;

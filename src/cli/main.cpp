@@ -44,8 +44,8 @@ const char* operation_name(ember::Operation op) {
 }
 
 /// Writes a mesh in the format of out's extension (atomically, privately).
-void write_atomically(const ember::Mesh& mesh, const fs::path& out) {
-  ember::cli::write_file_atomically(ember::write_mesh(mesh, ember::format_from_path(out)), out);
+void write_atomically(const ember::Mesh& mesh, const fs::path& out, std::span<const ember::Provenance> provenance = {}) {
+  ember::cli::write_file_atomically(ember::write_mesh(mesh, ember::format_from_path(out), provenance), out);
 }
 
 /// The library names inputs "operand i"; the user knows them by file name.
@@ -116,7 +116,7 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
                    "ember: warning: %s: %zu triangles become degenerate in STL's float32 coordinates; "
                    "use .ply, .obj or .off to keep the double coordinates\n",
                    a.output.c_str(), bad);
-  write_atomically(r.mesh, a.output);
+  write_atomically(r.mesh, a.output, r.provenance);  // PLY keeps it as face properties
   if (a.stats) ember::cli::print_stats(r, operation_name(op), operands.names);
   return 0;
 }

@@ -45,12 +45,14 @@ void print_stats(const BooleanResult& r, const char* operation, const std::vecto
                "\"solid_check\": %s, \"output_vertices\": %zu, \"tjunctions_resolved\": %zu, "
                "\"collinear_removed\": %zu, \"regions\": %zu, \"fallback_regions\": %zu, "
                "\"rounded_degenerate\": %zu, \"time_ms\": %.3f, \"setup_ms\": %.3f, \"proof_ms\": %.3f, "
-               "\"solve_ms\": %.3f, \"output_ms\": %.3f, \"threads\": %d}\n",
+               "\"solve_ms\": %.3f, \"output_ms\": %.3f, \"weld_ms\": %.3f, \"tjunction_ms\": %.3f, "
+               "\"regions_ms\": %.3f, \"triangulate_ms\": %.3f, \"threads\": %d}\n",
                EMBER_VERSION, operation, s.input_triangles, s.dropped_degenerate, s.collapsed_triangles,
                s.flipped_triangles, s.grid_step, s.output_polygons, s.dropped_slivers, s.solid_operands, open_edges,
                pairs, misoriented, json_string(solid_check).c_str(), s.output_vertices, s.tjunctions_resolved,
                s.collinear_removed, s.regions, s.fallback_regions, s.rounded_degenerate, s.time_ms, s.setup_ms,
-               s.proof_ms, s.solve_ms, s.output_ms, s.threads);
+               s.proof_ms, s.solve_ms, s.output_ms, s.weld_ms, s.tjunction_ms, s.regions_ms, s.triangulate_ms,
+               s.threads);
 }
 
 }  // namespace ember::cli

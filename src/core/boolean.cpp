@@ -319,6 +319,10 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     result.stats.regions = m.stats.regions;
     result.stats.fallback_regions = m.stats.fallback_regions;
     result.stats.rounded_degenerate = m.stats.rounded_degenerate;
+    result.stats.weld_ms = m.stats.weld_ms;
+    result.stats.tjunction_ms = m.stats.tjunction_ms;
+    result.stats.regions_ms = m.stats.regions_ms;
+    result.stats.triangulate_ms = m.stats.triangulate_ms;
     if (m.stats.fallback_regions)
       result.warnings.push_back(std::to_string(m.stats.fallback_regions) +
                                 " planar regions could not be merged and were triangulated piece by piece; the mesh "

@@ -87,19 +87,21 @@ std::vector<Mesh> read_meshes(const std::filesystem::path& path) {
   return meshes;
 }
 
-std::string write_mesh(const Mesh& mesh, MeshFormat format) {
+std::string write_mesh(const Mesh& mesh, MeshFormat format, std::span<const Provenance> provenance) {
   switch (format) {
     case MeshFormat::Obj: return write_obj(mesh);
     case MeshFormat::Stl: return write_stl(mesh);
     case MeshFormat::Off: return write_off(mesh);
-    case MeshFormat::Ply: return write_ply(mesh);
+    case MeshFormat::Ply: return write_ply(mesh, provenance);
     case MeshFormat::ThreeMf: return write_3mf(mesh);
   }
   throw Error("invalid mesh format value");
 }
 
-void write_mesh(const Mesh& mesh, const std::filesystem::path& path) {
-  const std::string data = write_mesh(mesh, format_from_path(path));
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path) { write_mesh(mesh, path, {}); }
+
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path, std::span<const Provenance> provenance) {
+  const std::string data = write_mesh(mesh, format_from_path(path), provenance);
   File f(std::fopen(path.c_str(), "wb"));
   if (!f) throw Error(path.string() + ": cannot open for writing: " + std::strerror(errno));
   if (std::fwrite(data.data(), 1, data.size(), f.get()) != data.size())

@@ -8,8 +8,10 @@
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "ember/error.hpp"
 #include "ember/io/mesh_io.hpp"
 #include "io/text_scanner.hpp"
 #include "io/writer_support.hpp"
@@ -375,20 +377,29 @@ Mesh read_ply(std::string_view bytes, std::string_view name) {
   return PlyBody<BinarySource>(h, src).read();
 }
 
-std::string write_ply(const Mesh& mesh) {
+std::string write_ply(const Mesh& mesh, std::span<const Provenance> provenance) {
   io_detail::check_mesh_for_writing(mesh, "PLY");
+  const bool sources = !provenance.empty();
+  if (sources && provenance.size() != mesh.face_count())
+    throw Error("PLY: " + std::to_string(provenance.size()) + " provenance entries for " +
+                std::to_string(mesh.face_count()) + " faces; give one per face (or none)");
   std::size_t largest_face = 0;
   for (std::size_t f = 0; f < mesh.face_count(); ++f) largest_face = std::max(largest_face, mesh.face_size(f));
   const bool wide_count = largest_face > 255;
   const bool wide_index = mesh.vertices.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max());
-  std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by ember\nelement vertex ";
+  std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by ember\n";
+  if (sources) out += "comment face operand: index of the Boolean's input mesh; source_face: face index within it\n";
+  out += "element vertex ";
   io_detail::append_uint(out, mesh.vertices.size());
   out += "\nproperty double x\nproperty double y\nproperty double z\nelement face ";
   io_detail::append_uint(out, mesh.face_count());
   out += wide_count ? "\nproperty list uint " : "\nproperty list uchar ";
-  out += wide_index ? "uint vertex_indices\nend_header\n" : "int vertex_indices\nend_header\n";
+  out += wide_index ? "uint vertex_indices\n" : "int vertex_indices\n";
+  if (sources) out += "property uint operand\nproperty uint source_face\n";
+  out += "end_header\n";
   const std::size_t header = out.size();
-  out.resize(header + mesh.vertices.size() * 24 + mesh.face_count() * (wide_count ? 4 : 1) + mesh.indices.size() * 4);
+  out.resize(header + mesh.vertices.size() * 24 + mesh.face_count() * (wide_count ? 4 : 1) + mesh.indices.size() * 4 +
+             (sources ? mesh.face_count() * 8 : 0));
   char* p = out.data() + header;
   const auto put = [&p](auto v) {
     unsigned char buf[sizeof v];
@@ -403,6 +414,7 @@ std::string write_ply(const Mesh& mesh) {
     if (wide_count) put(static_cast<std::uint32_t>(mesh.face_size(f)));
     else put(static_cast<std::uint8_t>(mesh.face_size(f)));
     for (std::uint32_t i : mesh.face(f)) put(i);
+    if (sources) put(provenance[f].operand), put(provenance[f].face);
   }
   return out;
 }

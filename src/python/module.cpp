@@ -108,7 +108,16 @@ py::dict stats_dict(const ember::BooleanStats& s) {
   d["output_polygons"] = s.output_polygons;
   d["dropped_slivers"] = s.dropped_slivers;
   d["solid_operands"] = s.solid_operands;
+  d["output_vertices"] = s.output_vertices;
+  d["tjunctions_resolved"] = s.tjunctions_resolved;
+  d["collinear_removed"] = s.collinear_removed;
+  d["fallback_regions"] = s.fallback_regions;
+  d["rounded_degenerate"] = s.rounded_degenerate;
   d["time_ms"] = s.time_ms;
+  for (const auto& [name, ms] : {std::pair{"setup_ms", s.setup_ms}, {"proof_ms", s.proof_ms}, {"solve_ms", s.solve_ms},
+                                 {"output_ms", s.output_ms}, {"weld_ms", s.weld_ms}, {"tjunction_ms", s.tjunction_ms},
+                                 {"regions_ms", s.regions_ms}, {"triangulate_ms", s.triangulate_ms}})
+    d[name] = ms;
   d["threads"] = s.threads;
   return d;
 }
@@ -223,11 +232,25 @@ PYBIND11_MODULE(ember, m) {
       py::arg("path"), "read_all(path) -> [(vertices, faces), ...]: every object of a 3MF file (one per build item).");
   m.def(
       "write",
-      [](const std::string& path, py::handle mesh) {
+      [](const std::string& path, py::handle mesh, py::object provenance) {
         const ember::Mesh m = to_mesh(mesh, "mesh");
+        std::vector<ember::Provenance> sources;
+        if (!provenance.is_none()) {
+          const auto a = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(provenance);
+          if (!a || a.ndim() != 2 || a.shape(1) != 2)
+            throw ember::Error("write: provenance must be an (m, 2) integer array [operand, face] per face");
+          auto r = a.unchecked<2>();
+          for (py::ssize_t i = 0; i < r.shape(0); ++i) {
+            if (r(i, 0) < 0 || r(i, 1) < 0 || r(i, 0) > UINT32_MAX || r(i, 1) > UINT32_MAX)
+              throw ember::Error("write: provenance row " + std::to_string(i) + " is out of range");
+            sources.push_back({static_cast<std::uint32_t>(r(i, 0)), static_cast<std::uint32_t>(r(i, 1))});
+          }
+        }
         py::gil_scoped_release release;
-        ember::write_mesh(m, path);
+        ember::write_mesh(m, path, sources);
       },
-      py::arg("path"), py::arg("mesh"),
-      "write(path, mesh): writes a (vertices, faces) pair or trimesh-like object; the format follows the extension.");
+      py::arg("path"), py::arg("mesh"), py::arg("provenance") = py::none(),
+"write(path, mesh, provenance=None): writes a (vertices, faces) pair or trimesh-like object; the format follows "
+      "the extension. provenance ((m, 2) [operand, face] per face, as returned by return_provenance=True) is stored "
+      "as PLY face properties operand and source_face; other formats leave it out.");
 }

@@ -5,6 +5,8 @@
 // Box inputs have integer coordinates, so every expected volume is exact.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <cmath>
 #include <map>
 #include <regex>
@@ -142,6 +144,18 @@ TEST(Cli, MixedInputAndOutputFormats) {
       EXPECT_EQ(bytes.rfind("OFF", 0), 0u);
     } else if (fmt == "ply") {
       EXPECT_EQ(bytes.rfind("ply\n", 0), 0u);
+      // Provenance per triangle as face properties: each triangle names an
+      // operand (0 or 1) and one of that box's 12 triangles.
+      ASSERT_NE(bytes.find("property uint operand\nproperty uint source_face\n"), std::string::npos);
+      const std::size_t body = bytes.find("end_header\n") + 11 + m.vertices.size() * 24;
+      ASSERT_EQ(bytes.size(), body + m.face_count() * (1 + 12 + 8));
+      for (std::size_t f = 0; f < m.face_count(); ++f) {
+        std::uint32_t operand = 0, face = 0;
+        std::memcpy(&operand, bytes.data() + body + f * 21 + 13, 4);
+        std::memcpy(&face, bytes.data() + body + f * 21 + 17, 4);
+        EXPECT_LT(operand, 2u);
+        EXPECT_LT(face, 12u);
+      }
     } else if (fmt == "stl") {
       EXPECT_EQ(bytes.size(), 84 + 50 * m.face_count());  // binary, triangles
     }

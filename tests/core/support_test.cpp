@@ -32,6 +32,23 @@ TEST(SupportShapes, BoxesAreClosedOutwardAndExact) {
   EXPECT_EQ(va.z, 0);
 }
 
+TEST(SupportChecks, TjunctionVerticesFindsAVertexInsideATwiceUsedEdge) {
+  EXPECT_EQ(tjunction_vertices(box({0, 0, 0}, {1, 2, 3})), 0u);
+  Mesh m;
+  for (const Vec3d p : {Vec3d{0, 0, 0}, Vec3d{2, 0, 0}, Vec3d{0, 2, 0}, Vec3d{1, 0, 0}, Vec3d{0, 0, 2},
+                        Vec3d{1, 0, 5}, Vec3d{2, 1, 5}, Vec3d{2, 0, 1}})
+    m.add_vertex(p);
+  m.add_face({0, 1, 2});
+  m.add_face({1, 0, 4});  // edge {0, 1} used twice, vertex 3 = (1, 0, 0) in its middle
+  m.add_face({3, 5, 6});
+  EXPECT_EQ(tjunction_vertices(m), 1u);
+  m.vertices[3] = {1, 0, 1e-300};  // off the line by a hair: no longer on the edge
+  EXPECT_EQ(tjunction_vertices(m), 0u);
+  m.vertices[3] = {1, 0, 0};
+  m.add_face({0, 1, 7});  // a third use: non-manifold edge, not counted
+  EXPECT_EQ(tjunction_vertices(m), 0u);
+}
+
 TEST(SupportShapes, BoxDiagonalsMatchOnSharedFaces) {
   // The +x face of [0,1]^3 and the -x face of [1,2]x[0,1]^2 use the same
   // diagonal, so the triangles coincide with opposite orientation.

@@ -232,6 +232,69 @@ TEST(ExactOrder, SamePointAcrossPlaneTriplesAndSubUlpNeighbours) {
   EXPECT_GT(exact_nonzero, 25000);  // nonzero answers that only the exact branch could give
 }
 
+TEST(ExactOrder, EqualWeightPointsCompareByNumerators) {
+  // compare_coord and same_point answer points with the same w from the
+  // numerators alone. Neighbours that differ by one unit in one numerator
+  // (a step of 1/w, far below an ulp when w is large) and the point itself.
+  Gen g(503);
+  int sub_ulp = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Point a = random_point(g, kKinds[i % kNumKinds]);
+    const int axis = i % 3;
+    for (const int delta : {-1, 0, 1}) {
+      Point b = a;
+      PointXYZ& c = axis == 0 ? b.x : (axis == 1 ? b.y : b.z);
+      c = PointXYZ::assume_bound(c + Int<64>(delta));  // attainable points stay well below 2^188
+      detail::cache_approx(b);
+      const Rat3 qa = rational(a), qb = rational(b);
+      EXPECT_EQ(same_point(a, b), qa == qb);
+      EXPECT_EQ(same_point(blind(a), blind(b)), qa == qb);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(compare_coord(a, b, k), cmp_q(qa[k], qb[k]));
+        EXPECT_EQ(compare_coord(blind(b), blind(a), k), cmp_q(qb[k], qa[k]));
+      }
+      EXPECT_EQ(compare_lex(a, b), oracle_lex(qa, qb));
+      sub_ulp += delta != 0 && !coord_filter_decides(a, b, axis);
+    }
+  }
+  EXPECT_GT(sub_ulp, 1000);  // most steps are decided by the numerators, not the filter
+}
+
+TEST(ExactOrder, AsGridPointRecognizesExactlyTheIntegerPoints) {
+  // Grid points built as the meeting point of three supporting planes through
+  // them (w up to ~2^158), random computed points (almost never integral),
+  // and each grid point moved by a sub-ulp step (one plane shifted by 1).
+  Gen g(504);
+  int grid_found = 0, rejected = 0;
+  auto check = [&](const Point& p) {
+    const Rat3 q = rational(p);
+    const mpq_class limit(static_cast<long>(kCoordLimit));
+    const bool in_range = abs(q[0]) <= limit && abs(q[1]) <= limit && abs(q[2]) <= limit;
+    const bool integral = q[0].get_den() == 1 && q[1].get_den() == 1 && q[2].get_den() == 1;
+    const std::optional<IntPoint> r = as_grid_point(p);
+    ASSERT_EQ(r.has_value(), integral && in_range) << q[0] << " " << q[1] << " " << q[2];
+    if (r) {
+      EXPECT_EQ(mpq_class(static_cast<long>(r->x)), q[0]);
+      EXPECT_EQ(mpq_class(static_cast<long>(r->y)), q[1]);
+      EXPECT_EQ(mpq_class(static_cast<long>(r->z)), q[2]);
+      ++grid_found;
+    } else {
+      ++rejected;
+    }
+  };
+  for (int i = 0; i < 2000; ++i) {
+    check(random_point(g, kKinds[i % kNumKinds]));
+    const IntPoint v = g.point();
+    const auto t1 = supporting_plane(v, g.point(), g.point()), t2 = supporting_plane(g.point(), v, g.point()),
+               t3 = supporting_plane(g.point(), g.point(), v);
+    if (!t1 || !t2 || !t3) continue;
+    if (const auto sss = intersect(*t1, *t2, *t3)) check(*sss);
+    if (const auto off = intersect(*t1, *t2, shifted(*t3, 1))) check(*off);
+  }
+  EXPECT_GT(grid_found, 2000);  // the SSS grid points and the "G" kind
+  EXPECT_GT(rejected, 2000);
+}
+
 TEST(ExactOrder, Orient2dDroppedMatchesOracleOnRandomTriples) {
   // Every drop axis, every permutation (cyclic: same sign, transposition:
   // opposite), filtered and exact-only; repeated points are collinear.

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <limits>
 
+#include "ember/error.hpp"
 #include "ember/io/mesh_io.hpp"
 #include "io/test_util.hpp"
 
@@ -76,6 +77,48 @@ TEST(Ply, BinaryLittleRoundTripIsBitExact) {
   const std::string bytes = write_ply(m);
   EXPECT_NE(bytes.find("format binary_little_endian 1.0"), std::string::npos);
   EXPECT_TRUE(test::bit_identical(m, read_ply(bytes, "rt.ply")));
+}
+
+TEST(Ply, ProvenanceIsWrittenAsFaceProperties) {
+  const Mesh m = test::awkward_mesh();
+  std::vector<Provenance> prov;
+  for (std::uint32_t f = 0; f < m.face_count(); ++f) prov.push_back({f % 3, 1000000 + 7 * f});
+  const std::string bytes = write_ply(m, prov);
+  EXPECT_NE(bytes.find("int vertex_indices\nproperty uint operand\nproperty uint source_face\nend_header\n"),
+            std::string::npos);
+  // The properties are skipped by the reader: the mesh reads back bit-exact.
+  EXPECT_TRUE(test::bit_identical(m, read_ply(bytes, "prov.ply")));
+  // Decode the face records by hand: uchar count, int indices, uint operand, uint source_face.
+  std::size_t at = bytes.find("end_header\n") + 11 + m.vertices.size() * 24;
+  auto take = [&](auto v) {
+    std::memcpy(&v, bytes.data() + at, sizeof v);
+    at += sizeof v;
+    return v;
+  };
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    ASSERT_EQ(take(std::uint8_t{}), m.face_size(f));
+    for (const std::uint32_t i : m.face(f)) EXPECT_EQ(take(std::int32_t{}), static_cast<std::int32_t>(i));
+    EXPECT_EQ(take(std::uint32_t{}), prov[f].operand);
+    EXPECT_EQ(take(std::uint32_t{}), prov[f].face);
+  }
+  EXPECT_EQ(at, bytes.size());
+  // Without provenance the file is the plain one.
+  EXPECT_EQ(write_ply(m, {}), write_ply(m));
+  EXPECT_EQ(write_ply(m).find("operand"), std::string::npos);
+}
+
+TEST(Ply, ProvenanceOfTheWrongLengthIsAnError) {
+  const Mesh m = test::awkward_mesh();
+  const std::vector<Provenance> one{{0, 0}};
+  ASSERT_GT(m.face_count(), 1u);
+  try {
+    (void)write_ply(m, one);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("1 provenance entries for " + std::to_string(m.face_count()) + " faces"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Ply, WriterWidensListCountForLargeFaces) {

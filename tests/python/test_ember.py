@@ -172,6 +172,26 @@ class Files(unittest.TestCase):
             self.assertAlmostEqual(volume((v, f)), 1.0, places=12, msg=ext)
             self.assertEqual(len(ember.read_all(p)), 1)
 
+    def test_provenance_is_written_to_ply_as_face_properties(self):
+        shifted = (self.mesh[0] + 0.5, self.mesh[1])
+        v, f, prov = ember.union(self.mesh, shifted, return_provenance=True)
+        p = self.path("u.ply")
+        ember.write(p, (v, f), provenance=prov)
+        data = open(p, "rb").read()
+        self.assertIn(b"property uint operand\nproperty uint source_face\n", data)
+        body = data.index(b"end_header\n") + 11 + len(v) * 24
+        self.assertEqual(len(data), body + len(f) * 21)
+        for i in range(len(f)):
+            rec = data[body + i * 21: body + (i + 1) * 21]
+            self.assertEqual(int.from_bytes(rec[13:17], "little"), prov[i][0])
+            self.assertEqual(int.from_bytes(rec[17:21], "little"), prov[i][1])
+        v2, f2 = ember.read(p)
+        self.assertEqual(f2.shape, f.shape)
+        with self.assertRaises(ember.Error):
+            ember.write(p, (v, f), provenance=prov[:1])
+        with self.assertRaises(ember.Error):
+            ember.write(p, (v, f), provenance=[[0, -1]] * len(f))
+
     def test_read_all_gives_each_3mf_object_with_transforms_applied(self):
         # A 3MF made by hand (test data only): object 1 is a unit tetrahedron,
         # object 2 a components object that holds it shifted by x+10; the

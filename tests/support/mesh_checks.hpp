@@ -4,6 +4,8 @@
 // face sanity checks, a reference indicator with the paper's semantics (Eq. 5:
 // "inside mesh i" means w_i != 0), a random point-membership check and exact
 // voxel counting for unions of axis-aligned boxes.
+#include <gmpxx.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -215,18 +217,56 @@ inline bool closed_oriented(const Mesh& m) {
 /// Undirected edges whose uses in the two directions differ in number: 0 means
 /// closed and consistently oriented (non-manifold edges allowed when their uses
 /// balance, as where solids touch along an edge).
+/// Calls f(a, b) for every directed edge a -> b (a != b) of every face.
+template <class F>
+inline void for_each_directed_edge(const Mesh& m, F&& f) {
+  for (std::size_t face_index = 0; face_index < m.face_count(); ++face_index) {
+    auto face = m.face(face_index);
+    for (std::size_t k = 0; k < face.size(); ++k)
+      if (face[k] != face[(k + 1) % face.size()]) f(face[k], face[(k + 1) % face.size()]);
+  }
+}
+
 inline std::size_t unbalanced_edges(const Mesh& m) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> balance;
-  for (std::size_t f = 0; f < m.face_count(); ++f) {
-    auto face = m.face(f);
-    for (std::size_t k = 0; k < face.size(); ++k) {
-      const std::uint32_t a = face[k], b = face[(k + 1) % face.size()];
-      if (a != b) balance[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
-    }
-  }
+  for_each_directed_edge(m, [&](std::uint32_t a, std::uint32_t b) {
+    balance[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
+  });
   std::size_t bad = 0;
   for (const auto& [e, c] : balance) bad += c != 0;
   return bad;
+}
+
+/// Vertices lying strictly inside an edge of a face (T-junctions), decided
+/// exactly on the written doubles (rationals via GMP), counted over edges
+/// whose undirected uses are exactly two: on a non-manifold line the sheets
+/// are stitched separately by design (core/mesh/tjunctions.cpp).
+inline std::size_t tjunction_vertices(const Mesh& m) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for_each_directed_edge(m, [&](std::uint32_t a, std::uint32_t b) { ++uses[{std::min(a, b), std::max(a, b)}]; });
+  std::vector<std::uint32_t> by_x(m.vertices.size());
+  for (std::uint32_t v = 0; v < by_x.size(); ++v) by_x[v] = v;
+  std::sort(by_x.begin(), by_x.end(), [&](std::uint32_t a, std::uint32_t b) { return m.vertices[a].x < m.vertices[b].x; });
+  std::size_t found = 0;
+  for (const auto& [e, count] : uses) {
+    if (count != 2) continue;
+    const Vec3d &a = m.vertices[e.first], &b = m.vertices[e.second];
+    const double lo = std::min(a.x, b.x), hi = std::max(a.x, b.x);
+    auto it = std::lower_bound(by_x.begin(), by_x.end(), lo,
+                               [&](std::uint32_t v, double x) { return m.vertices[v].x < x; });
+    for (; it != by_x.end() && m.vertices[*it].x <= hi; ++it) {
+      const Vec3d& p = m.vertices[*it];
+      if (*it == e.first || *it == e.second || p.y < std::min(a.y, b.y) || p.y > std::max(a.y, b.y) ||
+          p.z < std::min(a.z, b.z) || p.z > std::max(a.z, b.z))
+        continue;
+      const mpq_class d[3] = {mpq_class(b.x) - a.x, mpq_class(b.y) - a.y, mpq_class(b.z) - a.z};
+      const mpq_class q[3] = {mpq_class(p.x) - a.x, mpq_class(p.y) - a.y, mpq_class(p.z) - a.z};
+      if (d[1] * q[2] != d[2] * q[1] || d[2] * q[0] != d[0] * q[2] || d[0] * q[1] != d[1] * q[0]) continue;
+      const mpq_class t = d[0] * q[0] + d[1] * q[1] + d[2] * q[2], len = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+      found += t > 0 && t < len;
+    }
+  }
+  return found;
 }
 
 /// Reference indicators written independently of the library, with the paper's

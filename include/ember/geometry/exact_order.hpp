@@ -13,6 +13,7 @@
 //    < 18uM, every product by < 80uM^2, the determinant by < 170uM^2; the
 //    filter accepts |det| > 256uM^2.
 #include <cmath>
+#include <optional>
 
 #include "ember/geometry/point.hpp"
 
@@ -43,6 +44,11 @@ inline int compare_coord(const Point& a, const Point& b, int axis) {
   const double bound = 32 * 0x1p-53 * (std::fabs(fa) + std::fabs(fb));
   if (fa - fb > bound) return 1;
   if (fb - fa > bound) return -1;
+  // Equal w (most often both 1, or one point computed twice alike): compare numerators.
+  if (a.w == b.w) {
+    const PointXYZ &xa = detail::coord(a, axis), &xb = detail::coord(b, axis);
+    return xa == xb ? 0 : (xa < xb ? -1 : 1);
+  }
   // w > 0 for both, so the sign of x_a/w_a - x_b/w_b is that of x_a w_b - x_b w_a.
   const CrossCoord v = detail::coord(a, axis) * b.w - detail::coord(b, axis) * a.w;
   return v.sign();
@@ -50,8 +56,31 @@ inline int compare_coord(const Point& a, const Point& b, int axis) {
 
 /// The two points are the same point (exact; representations may differ in scale).
 inline bool same_point(const Point& a, const Point& b) {
+  if (a.w == b.w) return a.x == b.x && a.y == b.y && a.z == b.z;  // w > 0: equal ratios iff equal numerators
   return compare_coord(a, b, 0) == 0 && compare_coord(a, b, 1) == 0 && compare_coord(a, b, 2) == 0;
 }
+
+/// The grid point that p is, if its three coordinates are integers within the
+/// grid's range (|x| <= kCoordLimit; every output vertex is). The
+/// candidate is the cached double rounded to the nearest integer (f is within
+/// 8 ulp of x/w, and 8 ulp at |x/w| <= 2^25 is at most 2^-25, so an integer
+/// x/w is found, and f farther than 2^-20 from every integer rules it out),
+/// then confirmed exactly: g w == x (26 + 162 bits, inside PointXYZ's 188).
+/// Never wrong: a candidate that fails is no grid point.
+inline std::optional<IntPoint> as_grid_point(const Point& p) {
+  std::int64_t g[3];
+  for (int axis = 0; axis < 3; ++axis) {
+    const double f = p.f[axis];
+    if (!(std::fabs(f) <= static_cast<double>(kCoordLimit) + 1)) return std::nullopt;  // f may err past 2^25
+    const double nearest = std::nearbyint(f);
+    if (std::fabs(nearest) > static_cast<double>(kCoordLimit)) return std::nullopt;
+    if (std::fabs(f - nearest) > 0x1p-20) return std::nullopt;  // an integer x/w is within 2^-25 of f
+    g[axis] = static_cast<std::int64_t>(nearest);
+    if (compare(Coord(g[axis]) * p.w, detail::coord(p, axis)) != 0) return std::nullopt;
+  }
+  return IntPoint{g[0], g[1], g[2]};
+}
+static_assert(std::is_same_v<decltype(Coord{} * PointW{}), PointXYZ>, "grid coordinate times w: 26 + 162 = 188");
 
 /// Lexicographic order of the coordinates (x, then y, then z): -1, 0, +1.
 inline int compare_lex(const Point& a, const Point& b) {

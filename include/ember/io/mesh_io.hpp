@@ -35,6 +35,10 @@ Mesh read_mesh(const std::filesystem::path& path, std::vector<std::string>* warn
 /// Writes a mesh; the format follows the extension (STL: binary, PLY: binary
 /// little endian). Throws ember::Error when the file cannot be written.
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path);
+/// As above with one Provenance per face (a Boolean result's): PLY stores it
+/// as the face properties `operand` and `source_face`; the other formats have
+/// no per-face data and leave it out. Empty: none written.
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path, std::span<const Provenance> provenance);
 
 /// OBJ: polygons with (negative) indices in v, v/vt, v//vn, v/vt/vn form;
 /// texture, normal, group, material and other statements are ignored.
@@ -67,7 +71,10 @@ std::size_t stl_degenerate_triangles(const Mesh& mesh);
 /// OFF with shortest round-trip decimal coordinates.
 std::string write_off(const Mesh& mesh);
 /// Binary little-endian PLY with double coordinates (reads back bit-exact).
-std::string write_ply(const Mesh& mesh);
+/// With `provenance` (one per face; throws ember::Error otherwise) every face
+/// also gets `property uint operand` and `property uint source_face`, which
+/// read_ply and other readers skip or keep as they choose.
+std::string write_ply(const Mesh& mesh, std::span<const Provenance> provenance = {});
 /// 3MF with one object and one build item, unit millimeter; faces
 /// fan-triangulated. lib3mf 1.x keeps coordinates as floats and writes them
 /// with 6 decimals, so they move by up to 1e-6 (in mm: 1 nm) — fine for
@@ -76,6 +83,6 @@ std::string write_3mf(const Mesh& mesh);
 /// 3MF with one object and build item per mesh (read back by read_3mf as
 /// separate meshes, by the CLI as separate operands).
 std::string write_3mf(std::span<const Mesh> meshes);
-std::string write_mesh(const Mesh& mesh, MeshFormat format);
+std::string write_mesh(const Mesh& mesh, MeshFormat format, std::span<const Provenance> provenance = {});
 
 }  // namespace ember

@@ -3,6 +3,10 @@
 // Equal exact points round to equal doubles, so sorting the corners by their
 // rounded position brings every class of equal points into one run; distinct
 // points that happen to round alike are then told apart exactly (same_point).
+// Most corners are grid points (input vertices) stored as the meeting point of
+// three planes; as_grid_point recognizes them exactly, so they are rounded and
+// compared as integers and stored with w = 1, which keeps the later predicates
+// on the filter-or-integer fast paths.
 // Ids are numbered by first appearance in output order, so they do not depend
 // on the sort or on scheduling.
 #include <tbb/blocked_range.h>
@@ -21,6 +25,7 @@ namespace {
 struct CornerKey {
   double x, y, z;
   std::uint32_t corner;
+  bool grid;  ///< the corner is a grid point (then grid_of[corner] holds it)
   friend bool operator<(const CornerKey& a, const CornerKey& b) {
     return std::tie(a.x, a.y, a.z, a.corner) < std::tie(b.x, b.y, b.z, b.corner);
   }
@@ -44,14 +49,20 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
   const std::size_t n = corners.offsets.back();
   std::vector<std::uint32_t> poly_of(n);
   std::vector<CornerKey> keys(n);
+  std::vector<IntPoint> grid_of(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const auto& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i)
       for (std::uint32_t c = corners.offsets[i]; c < corners.offsets[i + 1]; ++c) {
         poly_of[c] = static_cast<std::uint32_t>(i);
-        const Vec3d x = q.dequantize(polys[i].poly.vertices[c - corners.offsets[i]]);
-        keys[c] = {x.x + 0.0, x.y + 0.0, x.z + 0.0, c};  // -0.0 -> +0.0: equal points, equal keys
+        const Point& pt = polys[i].poly.vertices[c - corners.offsets[i]];
+        const std::optional<IntPoint> g = as_grid_point(pt);
+        if (g) grid_of[c] = *g;
+        const Vec3d x = g ? q.dequantize(*g) : q.dequantize(pt);
+        keys[c] = {x.x + 0.0, x.y + 0.0, x.z + 0.0, c, g.has_value()};  // -0.0 -> +0.0: equal points, equal keys
       }
   });
+  std::vector<char> is_grid(n);
+  for (std::size_t c = 0; c < n; ++c) is_grid[keys[c].corner] = keys[c].grid;  // keys are still in corner order
   tbb::parallel_sort(keys.begin(), keys.end());
 
   // Representative (first corner in output order) of each corner's class.
@@ -65,26 +76,37 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
       while (j < n && keys[j].same_position(keys[i])) ++j;
       heads.clear();
       for (std::size_t k = i; k < j; ++k) {
-        const Point& pk = corner_point(polys, corners, poly_of, keys[k].corner);
-        std::uint32_t found = keys[k].corner;
+        const std::uint32_t c = keys[k].corner;
+        const bool grid = keys[k].grid;
+        // Grid-ness belongs to the exact point: a grid corner equals only grid corners.
+        auto same = [&](std::uint32_t h) {
+          if (grid) return is_grid[h] && grid_of[h] == grid_of[c];
+          return !is_grid[h] && same_point(corner_point(polys, corners, poly_of, h),
+                                           corner_point(polys, corners, poly_of, c));
+        };
+        std::uint32_t found = c;
         for (const std::uint32_t h : heads)
-          if (same_point(corner_point(polys, corners, poly_of, h), pk)) {
+          if (same(h)) {
             found = h;
             break;
           }
         if (found == keys[k].corner) heads.push_back(found);
-        rep[keys[k].corner] = found;  // keys are sorted by corner within a run: the head is the smallest
+        rep[c] = found;  // keys are sorted by corner within a run: the head is the smallest
       }
       i = j;
     }
   });
 
   // Number classes by their representative's position in output order.
+  std::size_t classes = 0;
+  for (std::size_t c = 0; c < n; ++c) classes += rep[c] == c;
+  out.exact.reserve(classes);
   corners.ids.resize(n);
   for (std::size_t c = 0; c < n; ++c) {
     if (rep[c] == c) {
       corners.ids[c] = static_cast<std::uint32_t>(out.exact.size());
-      out.exact.push_back(corner_point(polys, corners, poly_of, static_cast<std::uint32_t>(c)));
+      out.exact.push_back(is_grid[c] ? to_point(grid_of[c])
+                                     : corner_point(polys, corners, poly_of, static_cast<std::uint32_t>(c)));
     } else {
       corners.ids[c] = corners.ids[rep[c]];
     }

@@ -117,6 +117,7 @@ struct MeshOutputStats {
   std::size_t regions = 0;
   std::size_t fallback_regions = 0;    ///< regions triangulated piece by piece
   std::size_t rounded_degenerate = 0;  ///< triangles whose rounded corners have zero area
+  double weld_ms = 0, tjunction_ms = 0, regions_ms = 0, triangulate_ms = 0;  ///< time per step
 };
 
 struct MeshOutput {

@@ -6,6 +6,7 @@
 // edges, opposite to each other: such edges are interior and cancel. What
 // remains around a group of pieces joined that way is the boundary of the
 // merged region (outer loop and holes), with the region on the left.
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
@@ -19,15 +20,6 @@
 namespace ember::core {
 
 namespace {
-
-unsigned __int128 gcd128(unsigned __int128 a, unsigned __int128 b) {
-  while (b != 0) {
-    const unsigned __int128 t = a % b;
-    a = b;
-    b = t;
-  }
-  return a;
-}
 
 /// The plane scaled to coprime coefficients: equal for coplanar, equally
 /// oriented supports of different input triangles (an exact coplanarity id).
@@ -43,12 +35,21 @@ struct PlaneKey {
 };
 
 PlaneKey canonical(const Plane& p, bool flip) {
-  // |a|, |b|, |c| <= 2^52 and |d| < 2^79: they fit int64 / __int128.
-  __int128 v[4] = {p.a.raw(), p.b.raw(), p.c.raw(), p.d.raw()};
-  unsigned __int128 g = 0;
-  for (const __int128 x : v) g = gcd128(g, static_cast<unsigned __int128>(x < 0 ? -x : x));
-  for (__int128& x : v) x = x / static_cast<__int128>(g) * (flip ? -1 : 1);
-  return {static_cast<std::int64_t>(v[0]), static_cast<std::int64_t>(v[1]), static_cast<std::int64_t>(v[2]), v[3]};
+  // |a|, |b|, |c| <= 2^52 and |d| < 2^79: they fit int64 / __int128. The
+  // normal's gcd is a 64-bit one, and gcd(g, d) = gcd(g, d mod g) needs a
+  // single 128-bit remainder.
+  const std::int64_t a = static_cast<std::int64_t>(p.a.raw()), b = static_cast<std::int64_t>(p.b.raw()),
+                     c = static_cast<std::int64_t>(p.c.raw());
+  const __int128 d = p.d.raw();
+  std::uint64_t g = std::gcd(std::gcd(std::uint64_t(a < 0 ? -a : a), std::uint64_t(b < 0 ? -b : b)),
+                             std::uint64_t(c < 0 ? -c : c));
+  if (g > 1) {
+    const unsigned __int128 ud = static_cast<unsigned __int128>(d < 0 ? -d : d);
+    g = std::gcd(g, static_cast<std::uint64_t>(ud % g));
+  }
+  if (g == 0) g = 1;  // not a plane; keeps the key well defined
+  const std::int64_t s = flip ? -1 : 1, gi = static_cast<std::int64_t>(g);
+  return {a / gi * s, b / gi * s, c / gi * s, d / gi * s};
 }
 
 struct UnionFind {
@@ -129,6 +130,43 @@ struct GroupResult {
   std::vector<std::vector<BoundaryEdge>> edges;  // per region, `region` field local
 };
 
+/// A plane with a single piece (most of a curved surface): the piece is its
+/// region and its cycle, repeated ids dropped, the one loop. False if an id
+/// still repeats or fewer than 3 remain (then the general path sorts it out).
+bool single_piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids, std::vector<std::uint32_t>& loop,
+                       std::vector<std::uint32_t>& scratch) {
+  loop.assign(ids.begin(), ids.end());
+  if (poly.flip) std::reverse(loop.begin(), loop.end());
+  loop.erase(std::unique(loop.begin(), loop.end()), loop.end());
+  while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
+  if (loop.size() < 3) return false;
+  scratch.assign(loop.begin(), loop.end());
+  std::sort(scratch.begin(), scratch.end());
+  return std::adjacent_find(scratch.begin(), scratch.end()) == scratch.end();
+}
+
+/// Writes a single-piece loop's edges, linked, in the order the general path
+/// gives them (by id pair), so both paths produce the same output. `base` is
+/// the index of out[0] in the final edge list.
+void write_single_loop(std::span<const std::uint32_t> loop, std::uint32_t region, std::uint32_t base,
+                       BoundaryEdge* out, std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& slot) {
+  const auto n = static_cast<std::uint32_t>(loop.size());
+  auto pair_of = [&](std::uint32_t k) {
+    const std::uint32_t a = loop[k], b = loop[(k + 1) % n];
+    return std::pair{std::min(a, b), std::max(a, b)};
+  };
+  order.resize(n);
+  std::iota(order.begin(), order.end(), 0u);
+  // Distinct ids: no id pair repeats, so the order by pair is strict.
+  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return pair_of(x) < pair_of(y); });
+  slot.resize(n);  // cycle position -> position in the sorted edge list
+  for (std::uint32_t i = 0; i < n; ++i) slot[order[i]] = i;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t k = order[i];
+    out[i] = {loop[k], loop[(k + 1) % n], region, base + slot[(k + 1) % n], true};
+  }
+}
+
 GroupResult build_group(std::span<const OutputPolygon> polys, const Cycles& cycles,
                         std::span<const std::uint32_t> members, const Plane& plane) {
   struct DirEdge {
@@ -205,32 +243,68 @@ Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles
   group_begin.push_back(order.size());
   const std::size_t groups = group_begin.size() - 1;
 
+  // Pass 1: single-piece groups only count their loop; the others are merged.
   std::vector<GroupResult> results(groups);
-  tbb::parallel_for(std::size_t{0}, groups, [&](std::size_t g) {
-    const std::span<const std::uint32_t> members(order.data() + group_begin[g], group_begin[g + 1] - group_begin[g]);
-    const OutputPolygon& first = polys[members[0]];
-    const Plane plane = first.flip ? -first.poly.support : first.poly.support;
-    results[g] = build_group(polys, cycles, members, plane);
-    for (std::size_t r = 0; r < results[g].edges.size(); ++r) {
-      auto& e = results[g].edges[r];
-      link_loops(verts, plane, e, 0, e.size());
+  std::vector<char> single(groups, 0);
+  std::vector<std::uint32_t> region_count(groups + 1, 0), edge_count(groups + 1, 0);
+  auto members_of = [&](std::size_t g) {
+    return std::span<const std::uint32_t>(order.data() + group_begin[g], group_begin[g + 1] - group_begin[g]);
+  };
+  auto plane_of = [&](std::size_t g) {
+    const OutputPolygon& first = polys[order[group_begin[g]]];
+    return first.flip ? -first.poly.support : first.poly.support;
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 64), [&](const auto& range) {
+    std::vector<std::uint32_t> loop, scratch;
+    for (std::size_t g = range.begin(); g != range.end(); ++g) {
+      const auto members = members_of(g);
+      if (members.size() == 1 && single_piece_loop(polys[members[0]], cycles[members[0]], loop, scratch)) {
+        single[g] = 1;
+        region_count[g] = 1;
+        edge_count[g] = static_cast<std::uint32_t>(loop.size());
+        continue;
+      }
+      const Plane plane = plane_of(g);
+      results[g] = build_group(polys, cycles, members, plane);
+      region_count[g] = static_cast<std::uint32_t>(results[g].regions.size());
+      for (auto& e : results[g].edges) {
+        link_loops(verts, plane, e, 0, e.size());
+        edge_count[g] += static_cast<std::uint32_t>(e.size());
+      }
     }
   });
-
+  // Pass 2: every group writes its regions and edges at its prefix offsets.
+  std::exclusive_scan(region_count.begin(), region_count.end(), region_count.begin(), 0u);
+  std::exclusive_scan(edge_count.begin(), edge_count.end(), edge_count.begin(), 0u);
   Regions out;
-  out.edge_begin.push_back(0);
-  for (GroupResult& g : results)
-    for (std::size_t r = 0; r < g.regions.size(); ++r) {
-      const auto region = static_cast<std::uint32_t>(out.regions.size());
-      const auto base = static_cast<std::uint32_t>(out.edges.size());
-      for (BoundaryEdge e : g.edges[r]) {
-        e.region = region;
-        e.next += base;
-        out.edges.push_back(e);
+  out.regions.resize(region_count[groups]);
+  out.edges.resize(edge_count[groups]);
+  out.edge_begin.resize(region_count[groups] + 1);
+  out.edge_begin.back() = edge_count[groups];
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 64), [&](const auto& range) {
+    std::vector<std::uint32_t> loop, scratch, slot;
+    for (std::size_t g = range.begin(); g != range.end(); ++g) {
+      std::uint32_t region = region_count[g], base = edge_count[g];
+      if (single[g]) {
+        const std::uint32_t p = order[group_begin[g]];
+        single_piece_loop(polys[p], cycles[p], loop, scratch);
+        out.regions[region] = {plane_of(g), polys[p].id, {p}};
+        out.edge_begin[region] = base;
+        write_single_loop(loop, region, base, out.edges.data() + base, scratch, slot);
+        continue;
       }
-      out.edge_begin.push_back(static_cast<std::uint32_t>(out.edges.size()));
-      out.regions.push_back(std::move(g.regions[r]));
+      GroupResult& res = results[g];
+      for (std::size_t r = 0; r < res.regions.size(); ++r, ++region) {
+        out.edge_begin[region] = base;
+        for (BoundaryEdge e : res.edges[r]) {
+          e.region = region;
+          e.next += out.edge_begin[region];
+          out.edges[base++] = e;
+        }
+        out.regions[region] = std::move(res.regions[r]);
+      }
     }
+  });
   return out;
 }
 

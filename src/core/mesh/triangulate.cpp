@@ -246,6 +246,13 @@ bool triangulate_region(const Regions& regions, std::uint32_t region, const Outp
   const Ctx k{verts, plane};
   std::vector<std::vector<std::uint32_t>> loops;
   if (!collect_loops(regions, region, loops)) return false;
+  // Most regions of a curved surface are one triangle: no ear search needed.
+  if (loops.size() == 1 && loops[0].size() == 3) {
+    const auto& t = loops[0];
+    if (k.orient(t[0], t[1], t[2]) <= 0) return false;
+    out.push_back({t[2], t[0], t[1]});  // the rotation the ear clipper ends with
+    return true;
+  }
   std::vector<std::uint32_t> outer;
   std::vector<std::vector<std::uint32_t>> holes;
   for (auto& loop : loops) {

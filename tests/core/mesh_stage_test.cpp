@@ -1,0 +1,98 @@
+// The mesh stage's bookkeeping for collinear vertices (core/mesh/collinear.cpp):
+// removal on both sides, and restore_vertices, which puts removed vertices
+// back around a region that has to fall back to piece-by-piece triangulation
+// so that the fallback stays watertight. No real input falls back today, so
+// the restore path is exercised here on hand-built regions.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "core/mesh/mesh_output.hpp"
+
+namespace ember::core {
+namespace {
+
+/// Appends a closed loop of boundary edges for `region` (ids in order).
+void add_loop(Regions& r, std::uint32_t region, const std::vector<std::uint32_t>& ids) {
+  const auto base = static_cast<std::uint32_t>(r.edges.size());
+  const auto n = static_cast<std::uint32_t>(ids.size());
+  for (std::uint32_t k = 0; k < n; ++k) r.edges.push_back({ids[k], ids[(k + 1) % n], region, base + (k + 1) % n, true});
+  r.edge_begin.push_back(static_cast<std::uint32_t>(r.edges.size()));
+}
+
+/// The loop of alive edges through the region's first alive edge, as vertex ids.
+std::vector<std::uint32_t> walk(const Regions& r, std::uint32_t region) {
+  std::uint32_t start = r.edge_begin[region];
+  while (!r.edges[start].alive) ++start;
+  std::vector<std::uint32_t> ids;
+  std::uint32_t e = start;
+  do {
+    ids.push_back(r.edges[e].from);
+    e = r.edges[e].next;
+  } while (e != start && ids.size() < 100);
+  return ids;
+}
+
+/// Region 0 in the plane z = 0 and region 1 in y = 0 share the line from 0
+/// to 2, which vertices 1 and 8 split: 0->1->8->2 in region 0 and
+/// 2->8->1->0 in region 1. Region 2 (x = 5) is unrelated.
+Regions two_planes_sharing_a_split_edge() {
+  Regions r;
+  r.edge_begin.push_back(0);
+  r.regions = {{axis_plane(2, 0), 0, {0}}, {axis_plane(1, 0), 1, {1}}, {axis_plane(0, 5), 2, {2}}};
+  add_loop(r, 0, {0, 1, 8, 2, 3, 4});
+  add_loop(r, 1, {2, 8, 1, 0, 5, 6});
+  add_loop(r, 2, {10, 11, 12});
+  return r;
+}
+
+TEST(MeshStage, CollinearVerticesAreRemovedOnBothSides) {
+  Regions r = two_planes_sharing_a_split_edge();
+  const std::vector<Removal> removed = remove_collinear_vertices(r, 13);
+  ASSERT_EQ(removed.size(), 2u);
+  EXPECT_EQ(removed[0].v, 1u);
+  EXPECT_EQ(removed[1].v, 8u);
+  EXPECT_EQ(walk(r, 0), (std::vector<std::uint32_t>{0, 2, 3, 4}));
+  EXPECT_EQ(walk(r, 1), (std::vector<std::uint32_t>{2, 0, 5, 6}));
+  EXPECT_EQ(walk(r, 2), (std::vector<std::uint32_t>{10, 11, 12}));
+}
+
+TEST(MeshStage, ParallelPlanesKeepTheirVertices) {
+  // The same loops with region 1 parallel to region 0 (z = 1): the shared
+  // ids no longer mean a shared line between two planes; nothing is removed.
+  Regions r = two_planes_sharing_a_split_edge();
+  r.regions[1].plane = axis_plane(2, 1);
+  EXPECT_TRUE(remove_collinear_vertices(r, 13).empty());
+}
+
+TEST(MeshStage, RestoringAroundAFailedRegionPutsVerticesBackOnBothSides) {
+  for (const std::uint32_t failing : {0u, 1u}) {
+    SCOPED_TRACE(failing);
+    Regions r = two_planes_sharing_a_split_edge();
+    const std::vector<Removal> removed = remove_collinear_vertices(r, 13);
+    ASSERT_EQ(removed.size(), 2u);
+    std::vector<char> failed(3, 0), undone(removed.size(), 0);
+    failed[failing] = 1;
+    // Both removals touch the failed region; the second also saw the first's
+    // edges. Both come back, and the other sharing region must be redone.
+    const std::vector<std::uint32_t> changed = restore_vertices(r, removed, failed, undone);
+    EXPECT_EQ(changed, (std::vector<std::uint32_t>{1u - failing}));
+    EXPECT_EQ(undone, (std::vector<char>{1, 1}));
+    EXPECT_EQ(walk(r, 0), (std::vector<std::uint32_t>{0, 1, 8, 2, 3, 4}));
+    EXPECT_EQ(walk(r, 1), (std::vector<std::uint32_t>{2, 8, 1, 0, 5, 6}));
+    // A second call has nothing left to put back.
+    EXPECT_TRUE(restore_vertices(r, removed, failed, undone).empty());
+  }
+}
+
+TEST(MeshStage, RestoringAroundAnUnrelatedRegionChangesNothing) {
+  Regions r = two_planes_sharing_a_split_edge();
+  const std::vector<Removal> removed = remove_collinear_vertices(r, 13);
+  std::vector<char> failed{0, 0, 1}, undone(removed.size(), 0);
+  EXPECT_TRUE(restore_vertices(r, removed, failed, undone).empty());
+  EXPECT_EQ(undone, (std::vector<char>{0, 0}));
+  EXPECT_EQ(walk(r, 0), (std::vector<std::uint32_t>{0, 2, 3, 4}));
+}
+
+}  // namespace
+}  // namespace ember::core
