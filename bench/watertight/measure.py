@@ -202,7 +202,8 @@ CSV_COLS = ["case", "group", "mesh_a", "mesh_b", "op", "in_triangles", "ember_rc
             "ember_triangles", "ember_vertices", "non_triangles", "closed", "unbalanced_edges",
             "nonmanifold_edges", "repeated_positions", "fallback_regions", "rounded_degenerate",
             "tjunctions_resolved", "collinear_removed", "regions", "time_ms", "setup_ms", "proof_ms",
-            "solve_ms", "output_ms", "output_share", "ember_wall_s", "polygons_rc", "ember_polygons",
+            "solve_ms", "output_ms", "weld_ms", "tjunction_ms", "regions_ms", "triangulate_ms", "output_share",
+            "ember_wall_s", "polygons_rc", "ember_polygons",
             "polygons_time_ms", "polygons_output_ms", "manifold_triangles", "manifold_ms", "manifold_error",
             "ratio_ember_vs_manifold", "ratio_polygons_vs_manifold", "ember_slivers", "ember_max_aspect",
             "ember_zero_area", "manifold_slivers", "manifold_max_aspect", "manifold_closed", "ember_obj"]
@@ -244,7 +245,8 @@ def part_a(args, ember, np, outdir: Path) -> list[dict]:
             row["ember_error"] = r["error"]
             row["ember_wall_s"] = r["wall_s"]
             for k in ("fallback_regions", "rounded_degenerate", "tjunctions_resolved", "collinear_removed",
-                      "regions", "time_ms", "setup_ms", "proof_ms", "solve_ms", "output_ms"):
+                      "regions", "time_ms", "setup_ms", "proof_ms", "solve_ms", "output_ms", "weld_ms",
+                      "tjunction_ms", "regions_ms", "triangulate_ms"):
                 row[k] = st.get(k)
             if st.get("time_ms") and st.get("output_ms") is not None:
                 row["output_share"] = st["output_ms"] / st["time_ms"]
@@ -439,6 +441,9 @@ def summarize(rows: list[dict], drows: list[dict], outdir: Path, args) -> None:
         if shares:
             L.append(f"- output_ms / time_ms: median {statistics.median(shares):.3g}, max {shares[-1]:.3g}, "
                      f"min {shares[0]:.3g}")
+            steps = {k: sum(r.get(k) or 0 for r in ok) for k in ("weld_ms", "tjunction_ms", "regions_ms",
+                                                                  "triangulate_ms", "output_ms", "time_ms")}
+            L.append("- summed over the runs: " + ", ".join(f"{k} {v:.0f}" for k, v in steps.items()))
     if drows:
         L.append("\n## Degenerate inputs (union)\n")
         L.append("| case | a | b | inputs closed | --allow-open | rc | closed | unbalanced | non-manifold | fallback | "

@@ -97,20 +97,25 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
     }
   });
 
-  // Number classes by their representative's position in output order.
-  std::size_t classes = 0;
-  for (std::size_t c = 0; c < n; ++c) classes += rep[c] == c;
-  out.exact.reserve(classes);
-  corners.ids.resize(n);
+  // Number classes by their representative's position in output order: a
+  // scan over the head flags, then every corner in parallel.
+  std::vector<std::uint32_t> class_of_head(n);
+  std::uint32_t classes = 0;
   for (std::size_t c = 0; c < n; ++c) {
-    if (rep[c] == c) {
-      corners.ids[c] = static_cast<std::uint32_t>(out.exact.size());
-      out.exact.push_back(is_grid[c] ? to_point(grid_of[c])
-                                     : corner_point(polys, corners, poly_of, static_cast<std::uint32_t>(c)));
-    } else {
-      corners.ids[c] = corners.ids[rep[c]];
-    }
+    class_of_head[c] = classes;
+    classes += rep[c] == c;
   }
+  out.exact.resize(classes);
+  corners.ids.resize(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& r) {
+    for (std::size_t c = r.begin(); c != r.end(); ++c) {
+      const std::uint32_t id = class_of_head[rep[c]];
+      corners.ids[c] = id;
+      if (rep[c] == c)
+        out.exact[id] = is_grid[c] ? to_point(grid_of[c])
+                                   : corner_point(polys, corners, poly_of, static_cast<std::uint32_t>(c));
+    }
+  });
   // Each class's rounded position is its representative's key: rounded once.
   out.rounded.resize(out.exact.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& r) {

@@ -4,8 +4,10 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 
 namespace ember::core {
@@ -51,6 +53,76 @@ bool rounded_area_is_zero(const std::vector<Vec3d>& pos, std::span<const std::ui
   }
   return n[0] == 0 && n[1] == 0 && n[2] == 0;
 }
+
+namespace {
+
+/// The indexed mesh from the regions' triangles, in region order (a failed
+/// region's piece-by-piece triangles in its place). Vertices are numbered by
+/// first use, as a serial pass would number them, but computed in parallel:
+/// each vertex's first use is the smallest corner position using it.
+void assemble(const Regions& regions, const std::vector<std::array<std::uint32_t, 3>>& slots,
+              const std::vector<std::size_t>& slot, const std::vector<std::uint32_t>& count,
+              const std::vector<std::uint32_t>& failed_regions, const std::vector<RegionTriangles>& fallback,
+              const OutputVertices& verts, std::span<const Provenance> sources, MeshOutput& out) {
+  const std::size_t n_regions = regions.regions.size();
+  std::vector<std::uint32_t> fallback_of(n_regions, UINT32_MAX);
+  for (std::uint32_t i = 0; i < failed_regions.size(); ++i) fallback_of[failed_regions[i]] = i;
+  std::vector<std::size_t> first(n_regions + 1, 0);
+  for (std::size_t r = 0; r < n_regions; ++r)
+    first[r + 1] = first[r] + (fallback_of[r] != UINT32_MAX ? fallback[fallback_of[r]].tris.size() : count[r]);
+  const std::size_t total = first[n_regions];
+  std::vector<std::array<std::uint32_t, 3>> tris(total);
+  out.provenance.resize(total);
+  std::vector<std::uint64_t> first_use(verts.exact.size(), UINT64_MAX);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_regions, 256), [&](const auto& range) {
+    for (std::size_t r = range.begin(); r != range.end(); ++r) {
+      for (std::size_t i = 0; i < first[r + 1] - first[r]; ++i) {
+        const std::size_t t = first[r] + i;
+        if (fallback_of[r] != UINT32_MAX) {
+          tris[t] = fallback[fallback_of[r]].tris[i];
+          out.provenance[t] = sources[fallback[fallback_of[r]].source[i]];
+        } else {
+          tris[t] = slots[slot[r] + i];
+          out.provenance[t] = sources[regions.regions[r].source];
+        }
+        for (int c = 0; c < 3; ++c) {
+          std::atomic_ref<std::uint64_t> use(first_use[tris[t][c]]);
+          const std::uint64_t here = 3 * t + static_cast<std::uint64_t>(c);
+          for (std::uint64_t seen = use.load(std::memory_order_relaxed);
+               here < seen && !use.compare_exchange_weak(seen, here, std::memory_order_relaxed);) {
+          }
+        }
+      }
+    }
+  });
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> used;
+  for (std::uint32_t v = 0; v < first_use.size(); ++v)
+    if (first_use[v] != UINT64_MAX) used.emplace_back(first_use[v], v);
+  tbb::parallel_sort(used.begin(), used.end());
+  std::vector<std::uint32_t> remap(verts.exact.size(), UINT32_MAX);
+  Mesh& mesh = out.mesh;
+  mesh.vertices.resize(used.size());
+  tbb::parallel_for(std::size_t{0}, used.size(), [&](std::size_t i) {
+    remap[used[i].second] = static_cast<std::uint32_t>(i);
+    mesh.vertices[i] = verts.rounded[used[i].second];
+  });
+  mesh.indices.resize(3 * total);
+  mesh.face_offsets.resize(total + 1);
+  std::atomic<std::size_t> degenerate{0};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 1024), [&](const auto& range) {
+    std::size_t local = 0;
+    for (std::size_t t = range.begin(); t != range.end(); ++t) {
+      for (int c = 0; c < 3; ++c) mesh.indices[3 * t + static_cast<std::size_t>(c)] = remap[tris[t][c]];
+      mesh.face_offsets[t + 1] = static_cast<std::uint32_t>(3 * (t + 1));
+      local += rounded_area_is_zero(mesh.vertices, std::span<const std::uint32_t>(mesh.indices.data() + 3 * t, 3));
+    }
+    degenerate += local;
+  });
+  mesh.face_offsets[0] = 0;
+  out.stats.rounded_degenerate = degenerate;
+}
+
+}  // namespace
 
 MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quantizer& q,
                                std::span<const Provenance> sources) {
@@ -122,29 +194,7 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
     }
   });
 
-  // Vertices in order of first use, so numbering follows the output order.
-  std::vector<std::uint32_t> remap(verts.exact.size(), UINT32_MAX);
-  Mesh& mesh = out.mesh;
-  std::size_t next_fallback = 0;
-  auto emit = [&](const std::array<std::uint32_t, 3>& tri, std::uint32_t source) {
-    std::array<std::uint32_t, 3> t{};
-    for (int c = 0; c < 3; ++c) {
-      std::uint32_t& id = remap[tri[c]];
-      if (id == UINT32_MAX) id = mesh.add_vertex(verts.rounded[tri[c]]);
-      t[c] = id;
-    }
-    if (rounded_area_is_zero(mesh.vertices, t)) ++out.stats.rounded_degenerate;
-    mesh.add_face({t[0], t[1], t[2]});
-    out.provenance.push_back(sources[source]);
-  };
-  for (std::size_t r = 0; r < n_regions; ++r) {
-    if (failed[r]) {
-      const RegionTriangles& rt = fallback[next_fallback++];
-      for (std::size_t i = 0; i < rt.tris.size(); ++i) emit(rt.tris[i], rt.source[i]);
-      continue;
-    }
-    for (std::size_t i = slot[r]; i < slot[r] + count[r]; ++i) emit(slots[i], regions.regions[r].source);
-  }
+  assemble(regions, slots, slot, count, failed_regions, fallback, verts, sources, out);
   out.stats.triangulate_ms = ms_since(clock);
   return out;
 }
