@@ -18,8 +18,7 @@ namespace ember::test {
 /// The default output is a triangle mesh that is closed and consistently
 /// oriented whenever every operand is (issue 11): every edge balanced, no
 /// fallback regions, no vertex inside a (manifold) edge.
-inline void expect_watertight_if_closed(std::span<const Mesh> ops, const BooleanOptions& opt, const BooleanResult& r,
-                                        std::size_t known_tjunctions = 0) {
+inline void expect_watertight_if_closed(std::span<const Mesh> ops, const BooleanOptions& opt, const BooleanResult& r) {
   if (opt.output != BooleanOptions::Output::Triangles) return;
   for (std::size_t f = 0; f < r.mesh.face_count(); ++f) ASSERT_EQ(r.mesh.face_size(f), 3u) << "face " << f;
   EXPECT_EQ(r.stats.fallback_regions, 0u);
@@ -27,7 +26,7 @@ inline void expect_watertight_if_closed(std::span<const Mesh> ops, const Boolean
     if (unbalanced_edges(m) != 0) return;
   EXPECT_EQ(unbalanced_edges(r.mesh), 0u) << "closed operands must give a closed, consistently oriented result";
   if (r.mesh.vertices.size() <= 20000) {
-    EXPECT_EQ(tjunction_vertices(r.mesh), known_tjunctions) << "vertices inside an edge of the output";
+    EXPECT_EQ(tjunction_vertices(r.mesh), 0u) << "a vertex lies inside an edge of the output";
   }
 }
 
@@ -46,11 +45,8 @@ std::string error_message(F&& f) {
 /// faces have >= 3 vertices, non-zero area and (with convex_tol >= 0) are
 /// convex and planar; one provenance entry per face with indices in range;
 /// stats.output_polygons matches.
-/// known_tjunctions: vertices expected inside output edges (a documented gap:
-/// a solid touching another's face at one point can land on a diagonal of
-/// that face's triangulation; see docs/core.md "Mesh stage").
 inline BooleanResult run_checked(std::span<const Mesh> ops, Operation op, const BooleanOptions& opt = {},
-                                 double convex_tol = -1, std::size_t known_tjunctions = 0) {
+                                 double convex_tol = -1) {
   BooleanResult r = boolean(ops, op, opt);
   EXPECT_EQ(face_problems(r.mesh, convex_tol), "");
   EXPECT_EQ(r.provenance.size(), r.mesh.face_count());
@@ -61,7 +57,7 @@ inline BooleanResult run_checked(std::span<const Mesh> ops, Operation op, const 
     }
   }
   EXPECT_EQ(r.stats.output_polygons, r.mesh.face_count());
-  expect_watertight_if_closed(ops, opt, r, known_tjunctions);
+  expect_watertight_if_closed(ops, opt, r);
   // Operands proven solid take the shortcuts; the general path must agree.
   if (opt.detect_solid && r.stats.solid_operands > 0) {
     BooleanOptions general = opt;
@@ -79,8 +75,8 @@ inline BooleanResult run_checked(std::span<const Mesh> ops, Operation op, const 
   return r;
 }
 inline BooleanResult run_checked(std::initializer_list<Mesh> ops, Operation op, const BooleanOptions& opt = {},
-                                 double convex_tol = -1, std::size_t known_tjunctions = 0) {
-  return run_checked(std::span<const Mesh>(ops.begin(), ops.size()), op, opt, convex_tol, known_tjunctions);
+                                 double convex_tol = -1) {
+  return run_checked(std::span<const Mesh>(ops.begin(), ops.size()), op, opt, convex_tol);
 }
 
 /// Options with a custom indicator.

@@ -5,9 +5,11 @@
 // the restore path is exercised here on hand-built regions.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "core/mesh/mesh_output.hpp"
+#include "core/mesh/vertex_index.hpp"
 
 namespace ember::core {
 namespace {
@@ -92,6 +94,43 @@ TEST(MeshStage, RestoringAroundAnUnrelatedRegionChangesNothing) {
   EXPECT_TRUE(restore_vertices(r, removed, failed, undone).empty());
   EXPECT_EQ(undone, (std::vector<char>{0, 0}));
   EXPECT_EQ(walk(r, 0), (std::vector<std::uint32_t>{0, 2, 3, 4}));
+}
+
+/// Grid points as output vertices (exact and rounded alike).
+OutputVertices grid_vertices(const std::vector<IntPoint>& points) {
+  OutputVertices v;
+  for (const IntPoint& p : points) {
+    v.exact.push_back(to_point(p));
+    v.rounded.push_back({static_cast<double>(p.x), static_cast<double>(p.y), static_cast<double>(p.z)});
+  }
+  return v;
+}
+
+TEST(MeshStage, DiagonalThroughAUsedVertexIsSplit) {
+  // Square 0-1-2-3 in z = 0 as two triangles on the diagonal 0-2; vertex 4
+  // sits in the middle of the diagonal (another part touching the face),
+  // vertex 5 a quarter of the way, unused; vertex 6 is off the plane.
+  const OutputVertices verts =
+      grid_vertices({{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, {2, 2, 0}, {1, 1, 0}, {3, 3, 1}});
+  std::vector<std::uint32_t> all{0, 1, 2, 3, 4, 5, 6};
+  const VertexIndex index(verts.rounded, all, 1.0);
+  const Plane up = axis_plane(2, 0);  // normal +z: the triangles run counter-clockwise seen from above
+  std::vector<std::array<std::uint32_t, 3>> tris{{0, 1, 2}, {0, 2, 3}};
+  std::vector<char> used{1, 1, 1, 1, 1, 0, 1};
+  EXPECT_EQ(split_diagonals(up, verts, index, used, tris), 1u);
+  for (auto& t : tris) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());  // same cycles
+  std::sort(tris.begin(), tris.end());
+  EXPECT_EQ(tris, (std::vector<std::array<std::uint32_t, 3>>{{0, 1, 4}, {0, 4, 3}, {1, 2, 4}, {2, 3, 4}}));
+  // Unused vertices are not inserted.
+  std::vector<std::array<std::uint32_t, 3>> again{{0, 1, 2}, {0, 2, 3}};
+  used[4] = 0;
+  EXPECT_EQ(split_diagonals(up, verts, index, used, again), 0u);
+  EXPECT_EQ(again.size(), 2u);
+  // Two used points on the diagonal: both, in order.
+  std::vector<std::array<std::uint32_t, 3>> two{{0, 1, 2}, {0, 2, 3}};
+  used[4] = used[5] = 1;
+  EXPECT_EQ(split_diagonals(up, verts, index, used, two), 2u);
+  EXPECT_EQ(two.size(), 6u);
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include <atomic>
 #include <chrono>
 
+#include "core/mesh/vertex_index.hpp"
+
 namespace ember::core {
 
 namespace {
@@ -56,20 +58,21 @@ bool rounded_area_is_zero(const std::vector<Vec3d>& pos, std::span<const std::ui
 
 namespace {
 
-/// The indexed mesh from the regions' triangles, in region order (a failed
-/// region's piece-by-piece triangles in its place). Vertices are numbered by
+/// The indexed mesh from the regions' triangles, in region order (a region
+/// in `override_regions` takes its triangles from `overrides` instead of its
+/// slot: piece-by-piece fallbacks and regions whose diagonals were split). Vertices are numbered by
 /// first use, as a serial pass would number them, but computed in parallel:
 /// each vertex's first use is the smallest corner position using it.
 void assemble(const Regions& regions, const std::vector<std::array<std::uint32_t, 3>>& slots,
               const std::vector<std::size_t>& slot, const std::vector<std::uint32_t>& count,
-              const std::vector<std::uint32_t>& failed_regions, const std::vector<RegionTriangles>& fallback,
+              const std::vector<std::uint32_t>& override_regions, const std::vector<RegionTriangles>& overrides,
               const OutputVertices& verts, std::span<const Provenance> sources, MeshOutput& out) {
   const std::size_t n_regions = regions.regions.size();
-  std::vector<std::uint32_t> fallback_of(n_regions, UINT32_MAX);
-  for (std::uint32_t i = 0; i < failed_regions.size(); ++i) fallback_of[failed_regions[i]] = i;
+  std::vector<std::uint32_t> override_of(n_regions, UINT32_MAX);
+  for (std::uint32_t i = 0; i < override_regions.size(); ++i) override_of[override_regions[i]] = i;
   std::vector<std::size_t> first(n_regions + 1, 0);
   for (std::size_t r = 0; r < n_regions; ++r)
-    first[r + 1] = first[r] + (fallback_of[r] != UINT32_MAX ? fallback[fallback_of[r]].tris.size() : count[r]);
+    first[r + 1] = first[r] + (override_of[r] != UINT32_MAX ? overrides[override_of[r]].tris.size() : count[r]);
   const std::size_t total = first[n_regions];
   std::vector<std::array<std::uint32_t, 3>> tris(total);
   out.provenance.resize(total);
@@ -78,9 +81,9 @@ void assemble(const Regions& regions, const std::vector<std::array<std::uint32_t
     for (std::size_t r = range.begin(); r != range.end(); ++r) {
       for (std::size_t i = 0; i < first[r + 1] - first[r]; ++i) {
         const std::size_t t = first[r] + i;
-        if (fallback_of[r] != UINT32_MAX) {
-          tris[t] = fallback[fallback_of[r]].tris[i];
-          out.provenance[t] = sources[fallback[fallback_of[r]].source[i]];
+        if (override_of[r] != UINT32_MAX) {
+          tris[t] = overrides[override_of[r]].tris[i];
+          out.provenance[t] = sources[overrides[override_of[r]].source[i]];
         } else {
           tris[t] = slots[slot[r] + i];
           out.provenance[t] = sources[regions.regions[r].source];
@@ -130,7 +133,8 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
   auto clock = std::chrono::steady_clock::now();
   const OutputVertices verts = exact_weld(polys, q);
   out.stats.weld_ms = ms_since(clock);
-  const Cycles cycles = insert_tjunction_vertices(polys, verts, out.stats.tjunctions);
+  const VertexIndex index = index_output_vertices(polys, verts);
+  const Cycles cycles = insert_tjunction_vertices(polys, verts, index, out.stats.tjunctions);
   out.stats.tjunction_ms = ms_since(clock);
   Regions regions = build_regions(polys, cycles, verts);
   const std::vector<Removal> removals = remove_collinear_vertices(regions, verts.exact.size());
@@ -194,7 +198,47 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
     }
   });
 
-  assemble(regions, slots, slot, count, failed_regions, fallback, verts, sources, out);
+  // Step 5b: a diagonal may pass through a point where another part of the
+  // result touches the region; such regions get their split triangles.
+  std::vector<char> used(verts.exact.size(), 0);  // atomic stores: several regions share vertices
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_regions, 256), [&](const auto& range) {
+    for (std::size_t r = range.begin(); r != range.end(); ++r)
+      if (!failed[r])
+        for (std::size_t i = slot[r]; i < slot[r] + count[r]; ++i)
+          for (const std::uint32_t v : slots[i]) std::atomic_ref<char>(used[v]).store(1, std::memory_order_relaxed);
+  });
+  for (const RegionTriangles& rt : fallback)
+    for (const auto& t : rt.tris)
+      for (const std::uint32_t v : t) used[v] = 1;
+  std::vector<std::vector<std::array<std::uint32_t, 3>>> split(n_regions);
+  std::atomic<std::size_t> diagonal_points{0};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_regions, 64), [&](const auto& range) {
+    std::vector<std::array<std::uint32_t, 3>> tris;
+    for (std::size_t r = range.begin(); r != range.end(); ++r) {
+      if (failed[r] || count[r] < 2) continue;
+      tris.assign(slots.begin() + static_cast<std::ptrdiff_t>(slot[r]),
+                  slots.begin() + static_cast<std::ptrdiff_t>(slot[r] + count[r]));
+      if (const std::size_t k = split_diagonals(regions.regions[r].plane, verts, index, used, tris)) {
+        split[r] = tris;
+        diagonal_points += k;
+      }
+    }
+  });
+  out.stats.tjunctions += diagonal_points;
+  // Regions whose triangles are not in their slot: fallbacks and split ones, in region order.
+  std::vector<std::uint32_t> override_regions;
+  std::vector<RegionTriangles> overrides;
+  for (std::uint32_t r = 0, f = 0; r < n_regions; ++r) {
+    if (failed[r]) {
+      override_regions.push_back(r);
+      overrides.push_back(std::move(fallback[f++]));
+    } else if (!split[r].empty()) {
+      override_regions.push_back(r);
+      overrides.push_back({std::move(split[r]), {}});
+      overrides.back().source.assign(overrides.back().tris.size(), regions.regions[r].source);
+    }
+  }
+  assemble(regions, slots, slot, count, override_regions, overrides, verts, sources, out);
   out.stats.triangulate_ms = ms_since(clock);
   return out;
 }

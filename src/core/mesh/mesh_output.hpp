@@ -44,11 +44,16 @@ struct OutputVertices {
 /// Step 1. Polygons keep their stored (unflipped) vertex order.
 OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer& q);
 
+class VertexIndex;  // core/mesh/vertex_index.hpp
+
+/// Every output vertex, bucketed for searches along segments.
+VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts);
+
 /// Step 2. Per polygon (unflipped order): corners with every vertex that lies
 /// in the open interior of an edge inserted in order along it. Counts the
 /// insertions in `inserted`.
 Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts,
-                                 std::size_t& inserted);
+                                 const VertexIndex& index, std::size_t& inserted);
 
 /// A region: pieces of one oriented plane joined across shared edges.
 struct Region {
@@ -105,6 +110,16 @@ bool triangulate_region(const Regions& regions, std::uint32_t region, const Outp
 /// clockwise around `plane`. False if no valid ear can be found.
 bool triangulate_loop(std::vector<std::uint32_t> loop, const Plane& plane, const OutputVertices& verts,
                       std::vector<std::array<std::uint32_t, 3>>& out);
+
+/// Step 5b for one region's triangles (a triangulation of a plane region):
+/// every vertex that some output triangle uses (`used`, per vertex id) and
+/// that lies strictly inside a diagonal (an edge two of the triangles share)
+/// is inserted, splitting both triangles. Such a vertex is a point where
+/// another part of the result touches the region's interior. (Vertices no
+/// triangle uses, such as the inner corners of merged pieces, are skipped.)
+/// Returns the number of vertices inserted (0: `tris` unchanged).
+std::size_t split_diagonals(const Plane& plane, const OutputVertices& verts, const VertexIndex& index,
+                            const std::vector<char>& used, std::vector<std::array<std::uint32_t, 3>>& tris);
 
 /// Twice the area vector of a face of rounded (double) vertices, summed from
 /// differences to its first vertex in extended precision, is exactly zero.

@@ -1,0 +1,144 @@
+#pragma once
+// A set of output vertices bucketed by rounded position, for the mesh
+// stage's exact searches of vertices on a segment (T-junctions, diagonals).
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "ember/mesh.hpp"
+
+namespace ember::core {
+
+/// A set of vertices bucketed in a uniform grid over their rounded positions
+/// (cells about one mean edge long, found through a hash table). Positions
+/// are copied so that a query touches only the set's own memory.
+class VertexIndex {
+ public:
+  VertexIndex(const std::vector<Vec3d>& all, std::vector<std::uint32_t> members, double mean_edge)
+      : ids_(std::move(members)) {
+    if (ids_.empty()) return;
+    pos_.resize(ids_.size());
+    for (std::size_t i = 0; i < ids_.size(); ++i) pos_[i] = all[ids_[i]];
+    lo_ = hi_ = pos_[0];
+    for (const Vec3d& p : pos_) {
+      lo_ = {std::min(lo_.x, p.x), std::min(lo_.y, p.y), std::min(lo_.z, p.z)};
+      hi_ = {std::max(hi_.x, p.x), std::max(hi_.y, p.y), std::max(hi_.z, p.z)};
+    }
+    const double extent = std::max({hi_.x - lo_.x, hi_.y - lo_.y, hi_.z - lo_.z});
+    cell_ = std::max(mean_edge, extent * 0x1p-20);
+    if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = 1;
+    const auto n = static_cast<std::uint32_t>(pos_.size());
+    cells_.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) cells_[i] = {key(cell_of(pos_[i])), i};
+    tbb::parallel_sort(cells_.begin(), cells_.end());
+    // Open-addressing table: occupied cell key -> its run in cells_.
+    std::size_t runs = 0;
+    for (std::size_t i = 0; i < n; ++i) runs += i == 0 || cells_[i].first != cells_[i - 1].first;
+    std::size_t size = 16;
+    while (size < 2 * runs) size *= 2;
+    slots_.assign(size, Slot{});
+    for (std::uint32_t i = 0; i < n;) {
+      std::uint32_t j = i;
+      while (j < n && cells_[j].first == cells_[i].first) ++j;
+      std::size_t h = hash(cells_[i].first) & (size - 1);
+      while (slots_[h].end != 0) h = (h + 1) & (size - 1);
+      slots_[h] = {cells_[i].first, i, j};
+      i = j;
+    }
+  }
+
+  /// Calls f(v) for every member whose rounded position lies in the box of
+  /// the rounded end points ra, rb and near the segment between them: a point
+  /// exactly between a and b rounds into that box (rounding is monotone) and
+  /// within a few ulp of the segment through ra and rb. Long edges are cut
+  /// into pieces about one cell long, each covering its stretch of the segment
+  /// padded by 2^-40 of the largest coordinate (far more than those ulp), so
+  /// a long edge visits the cells along it rather than its whole box. A
+  /// member near two pieces may be reported twice.
+  template <typename F>
+  void for_each_near_segment(const Vec3d& ra, const Vec3d& rb, F&& f) const {
+    const Vec3d lo{std::min(ra.x, rb.x), std::min(ra.y, rb.y), std::min(ra.z, rb.z)};
+    const Vec3d hi{std::max(ra.x, rb.x), std::max(ra.y, rb.y), std::max(ra.z, rb.z)};
+    const double span = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    const double pieces = std::min(std::ceil(span / cell_), 65536.0);
+    if (!(pieces > 2)) return for_each_in_box(lo, hi, f);
+    const double pad = 0x1p-40 * std::max({std::fabs(lo.x), std::fabs(lo.y), std::fabs(lo.z), std::fabs(hi.x),
+                                           std::fabs(hi.y), std::fabs(hi.z)});
+    const auto n = static_cast<int>(pieces);
+    auto at = [&](int i) {
+      const double t = static_cast<double>(i) / n;
+      return Vec3d{ra.x + (rb.x - ra.x) * t, ra.y + (rb.y - ra.y) * t, ra.z + (rb.z - ra.z) * t};
+    };
+    Vec3d p0 = ra;
+    for (int i = 1; i <= n; ++i) {
+      const Vec3d p1 = i == n ? rb : at(i);
+      const Vec3d l{std::max(lo.x, std::min(p0.x, p1.x) - pad), std::max(lo.y, std::min(p0.y, p1.y) - pad),
+                    std::max(lo.z, std::min(p0.z, p1.z) - pad)};
+      const Vec3d h{std::min(hi.x, std::max(p0.x, p1.x) + pad), std::min(hi.y, std::max(p0.y, p1.y) + pad),
+                    std::min(hi.z, std::max(p0.z, p1.z) + pad)};
+      for_each_in_box(l, h, f);
+      p0 = p1;
+    }
+  }
+
+  /// Calls f(v) for every member whose rounded position lies in [lo, hi].
+  template <typename F>
+  void for_each_in_box(const Vec3d& lo, const Vec3d& hi, F&& f) const {
+    if (pos_.empty() || hi.x < lo_.x || hi.y < lo_.y || hi.z < lo_.z || lo.x > hi_.x || lo.y > hi_.y ||
+        lo.z > hi_.z)
+      return;
+    const std::array<std::int64_t, 3> c0 = cell_of(lo), c1 = cell_of(hi);
+    auto inside = [&](std::uint32_t i) {
+      const Vec3d& p = pos_[i];
+      return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z;
+    };
+    for (std::int64_t x = c0[0]; x <= c1[0]; ++x)
+      for (std::int64_t y = c0[1]; y <= c1[1]; ++y)
+        for (std::int64_t z = c0[2]; z <= c1[2]; ++z) {
+          const Slot& slot = find(key({x, y, z}));
+          for (std::uint32_t i = slot.begin; i < slot.end; ++i)
+            if (inside(cells_[i].second)) f(ids_[cells_[i].second]);
+        }
+  }
+
+ private:
+  static double coord(const Vec3d& p, int a) { return a == 0 ? p.x : (a == 1 ? p.y : p.z); }
+  /// Monotone in each coordinate (floating subtraction and division by a
+  /// positive constant are monotone), so a box's cells bracket its points'.
+  std::array<std::int64_t, 3> cell_of(const Vec3d& p) const {
+    auto c = [&](double x, double l) {
+      return static_cast<std::int64_t>(std::clamp(std::floor((x - l) / cell_), 0.0, double{(1 << 20) - 1}));
+    };
+    return {c(p.x, lo_.x), c(p.y, lo_.y), c(p.z, lo_.z)};
+  }
+  static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
+    return (static_cast<std::uint64_t>(c[0]) << 42) | (static_cast<std::uint64_t>(c[1]) << 21) |
+           static_cast<std::uint64_t>(c[2]);
+  }
+
+  std::vector<std::uint32_t> ids_;  ///< member i is output vertex ids_[i]
+  std::vector<Vec3d> pos_;
+  Vec3d lo_{}, hi_{};
+  double cell_ = 1;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> cells_;  ///< (cell key, member), sorted
+  struct Slot {
+    std::uint64_t key = 0;
+    std::uint32_t begin = 0, end = 0;  ///< run in cells_; end == 0: empty slot
+  };
+  std::vector<Slot> slots_;
+  static std::uint64_t hash(std::uint64_t k) { return (k ^ (k >> 29)) * 0x9E3779B97F4A7C15ull >> 20; }
+  const Slot& find(std::uint64_t k) const {
+    static constexpr Slot kEmpty{};
+    for (std::size_t h = hash(k) & (slots_.size() - 1);; h = (h + 1) & (slots_.size() - 1)) {
+      if (slots_[h].end == 0) return kEmpty;
+      if (slots_[h].key == k) return slots_[h];
+    }
+  }
+};
+
+}  // namespace ember::core
