@@ -50,19 +50,18 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
   std::vector<std::uint32_t> poly_of(n);
   std::vector<CornerKey> keys(n);
   std::vector<IntPoint> grid_of(n);
+  std::vector<char> is_grid(n, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const auto& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i)
       for (std::uint32_t c = corners.offsets[i]; c < corners.offsets[i + 1]; ++c) {
         poly_of[c] = static_cast<std::uint32_t>(i);
         const Point& pt = polys[i].poly.vertices[c - corners.offsets[i]];
         const std::optional<IntPoint> g = as_grid_point(pt);
-        if (g) grid_of[c] = *g;
+        if (g) grid_of[c] = *g, is_grid[c] = 1;
         const Vec3d x = g ? q.dequantize(*g) : q.dequantize(pt);
         keys[c] = {x.x + 0.0, x.y + 0.0, x.z + 0.0, c, g.has_value()};  // -0.0 -> +0.0: equal points, equal keys
       }
   });
-  std::vector<char> is_grid(n);
-  for (std::size_t c = 0; c < n; ++c) is_grid[keys[c].corner] = keys[c].grid;  // keys are still in corner order
   tbb::parallel_sort(keys.begin(), keys.end());
 
   // Representative (first corner in output order) of each corner's class.

@@ -16,15 +16,6 @@ namespace ember::core {
 
 namespace {
 
-/// A piece's cycle around its outward normal, repeated ids dropped.
-std::vector<std::uint32_t> piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids) {
-  std::vector<std::uint32_t> loop;
-  for (const std::uint32_t v : ids)
-    if (loop.empty() || loop.back() != v) loop.push_back(v);
-  while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
-  if (poly.flip) std::reverse(loop.begin(), loop.end());
-  return loop;
-}
 
 double ms_since(std::chrono::steady_clock::time_point& t) {
   const auto now = std::chrono::steady_clock::now();
@@ -192,7 +183,8 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
     RegionTriangles& rt = fallback[i];
     const Region& region = regions.regions[failed_regions[i]];
     for (const std::uint32_t p : region.pieces) {
-      std::vector<std::uint32_t> loop = piece_loop(polys[p], cycles[p]);
+      std::vector<std::uint32_t> loop;
+      piece_loop(polys[p], cycles[p], loop);
       if (loop.size() >= 3) triangulate_loop(std::move(loop), region.plane, verts, rt.tris);
       rt.source.resize(rt.tris.size(), polys[p].id);
     }

@@ -77,6 +77,10 @@ struct Regions {
   std::vector<std::uint32_t> edge_begin;  ///< region r owns edges[edge_begin[r] .. edge_begin[r+1])
 };
 
+/// A piece's cycle (step 2's, unflipped order) around its outward normal,
+/// repeated ids dropped, into `loop`.
+void piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids, std::vector<std::uint32_t>& loop);
+
 /// Step 3 (merge). `cycles` are the polygons after step 2, unflipped.
 Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles, const OutputVertices& verts);
 

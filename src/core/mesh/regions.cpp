@@ -131,14 +131,11 @@ struct GroupResult {
 };
 
 /// A plane with a single piece (most of a curved surface): the piece is its
-/// region and its cycle, repeated ids dropped, the one loop. False if an id
-/// still repeats or fewer than 3 remain (then the general path sorts it out).
+/// region and its oriented loop the one boundary loop. False if an id still
+/// repeats or fewer than 3 remain (then the general path sorts it out).
 bool single_piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids, std::vector<std::uint32_t>& loop,
                        std::vector<std::uint32_t>& scratch) {
-  loop.assign(ids.begin(), ids.end());
-  if (poly.flip) std::reverse(loop.begin(), loop.end());
-  loop.erase(std::unique(loop.begin(), loop.end()), loop.end());
-  while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
+  piece_loop(poly, ids, loop);
   if (loop.size() < 3) return false;
   scratch.assign(loop.begin(), loop.end());
   std::sort(scratch.begin(), scratch.end());
@@ -228,6 +225,14 @@ int orient_in_plane(const Point& a, const Point& b, const Point& c, const Plane&
   return plane.normal(drop).negative() ? -o : o;
 }
 
+void piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids, std::vector<std::uint32_t>& loop) {
+  loop.clear();
+  for (const std::uint32_t v : ids)
+    if (loop.empty() || loop.back() != v) loop.push_back(v);
+  while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
+  if (poly.flip) std::reverse(loop.begin(), loop.end());
+}
+
 Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles, const OutputVertices& verts) {
   std::vector<PlaneKey> keys(polys.size());
   tbb::parallel_for(std::size_t{0}, polys.size(),
@@ -287,7 +292,7 @@ Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles
       std::uint32_t region = region_count[g], base = edge_count[g];
       if (single[g]) {
         const std::uint32_t p = order[group_begin[g]];
-        single_piece_loop(polys[p], cycles[p], loop, scratch);
+        piece_loop(polys[p], cycles[p], loop);  // checked in pass 1
         out.regions[region] = {plane_of(g), polys[p].id, {p}};
         out.edge_begin[region] = base;
         write_single_loop(loop, region, base, out.edges.data() + base, scratch, slot);
