@@ -17,11 +17,11 @@
 #include <unordered_map>
 
 #include "core/grid_input.hpp"
+#include "core/input_soup.hpp"
 #include "core/indicator.hpp"
 #include "core/mesh/mesh_output.hpp"
 #include "core/solve.hpp"
 #include "core/solid_check.hpp"
-#include "core/weld.hpp"
 #include "ember/core/quantize.hpp"
 #include "ember/error.hpp"
 
@@ -35,46 +35,7 @@ double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_c
 
 std::string operand_name(std::size_t i) { return "operand " + std::to_string(i); }
 
-void validate(const Mesh& m, std::size_t index) {
-  if (m.face_offsets.empty() || m.face_offsets.front() != 0 || m.face_offsets.back() != m.indices.size())
-    throw Error(operand_name(index) + ": face_offsets must start at 0 and end at indices.size()");
-  for (std::size_t f = 0; f < m.face_count(); ++f) {
-    if (m.face_offsets[f + 1] < m.face_offsets[f])
-      throw Error(operand_name(index) + ": face_offsets must not decrease (face " + std::to_string(f) + ")");
-    if (m.face_size(f) < 3)
-      throw Error(operand_name(index) + ": face " + std::to_string(f) + " has " + std::to_string(m.face_size(f)) +
-                  " vertices; faces need at least 3");
-    for (const std::uint32_t v : m.face(f))
-      if (v >= m.vertices.size())
-        throw Error(operand_name(index) + ": face " + std::to_string(f) + " uses vertex index " + std::to_string(v) +
-                    ", but the mesh has " + std::to_string(m.vertices.size()) + " vertices");
-  }
-  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-    const Vec3d& p = m.vertices[v];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      throw Error(operand_name(index) + ": vertex " + std::to_string(v) +
-                  " has a non-finite coordinate (NaN or infinity); fix or remove it");
-  }
-}
-
-/// Counts edges whose uses in one direction are not matched by uses in the
-/// other (on the quantized positions, degenerate triangles included, so the
-/// test describes the surface the core actually sees). Zero means closed.
-std::size_t count_open_edges(const core::WeldedTriangles& welded) {
-  std::size_t open = 0;
-  core::for_each_edge(welded, [&](std::span<const core::EdgeUse> uses) {
-    int balance = 0;
-    for (const core::EdgeUse& u : uses) balance += u.forward ? 1 : -1;
-    open += balance != 0;
-  });
-  return open;
-}
-
-struct Source {
-  std::uint32_t operand, face;
-};
-
-Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer& q, const std::vector<Source>& sources,
+Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer& q, const std::vector<Provenance>& sources,
                  std::vector<Provenance>& provenance, std::size_t& dropped) {
   struct Key {
     std::uint64_t v[3];
@@ -124,8 +85,7 @@ Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer&
       continue;
     }
     mesh.add_face(face);
-    const Source& s = sources[p.id];
-    provenance.push_back({s.operand, s.face});
+    provenance.push_back(sources[p.id]);
   }
   return mesh;
 }
@@ -169,13 +129,6 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     throw Error("boolean: options.solid must be empty or have one entry per operand (" +
                 std::to_string(operands.size()) + "), got " + std::to_string(options.solid.size()));
   const Indicator indicator = options.indicator ? options.indicator : indicator_for(op, operands.size(), options.min_k);
-  for (std::size_t i = 0; i < operands.size(); ++i) validate(operands[i], i);
-
-  // One map for all operands, fitted to the vertices faces actually use.
-  std::vector<Vec3d> used;
-  for (const Mesh& m : operands)
-    for (const std::uint32_t v : m.indices) used.push_back(m.vertices[v]);
-  const Quantizer q = Quantizer::fit(used);
 
   BooleanResult result;
   // More threads than the machine has only oversubscribe it (and make TBB
@@ -185,50 +138,32 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   result.stats.threads = threads;
   tbb::task_arena arena(threads);
 
-  // Every face triangulated on the grid (serial: cheap, fixes the order).
-  core::GridInput gi = core::to_grid(operands, q);
-  std::vector<core::GridTriangle>& triangles = gi.triangles;
-  const std::vector<std::size_t>& operand_begin = gi.operand_begin;
-  const std::array<std::int64_t, 3>& lo = gi.lo;
-  const std::array<std::int64_t, 3>& hi = gi.hi;
-  result.stats.grid_step = q.grid_spacing();
-  result.stats.operands.resize(operands.size());
-  core::audit_quantization(operands, gi, q, result.stats.operands, result.warnings);
+  // Every step of the set-up is parallel and its result independent of the
+  // split: validation, one quantization map for all operands (fitted to the
+  // vertices faces use), grid triangles with welded vertex ids, the audit of
+  // the rounding, closedness, and the root soup.
+  core::GridInput gi;
+  core::InputSoup in;
+  std::vector<std::size_t> open;
+  Quantizer q;
+  arena.execute([&] {
+    core::validate_operands(operands);
+    q = core::fit_used_vertices(operands);
+    gi = core::to_grid(operands, q);
+    result.stats.grid_step = q.grid_spacing();
+    result.stats.operands.resize(operands.size());
+    core::audit_quantization(operands, gi, q, result.stats.operands, result.warnings);
+    open = core::count_open_edges(gi);
+    in = core::build_soup(gi, options.detect_solid);
+  });
   for (const OperandReport& r : result.stats.operands) {
     result.stats.collapsed_triangles += r.collapsed_triangles;
     result.stats.flipped_triangles += r.flipped_triangles;
   }
-  result.stats.input_triangles = triangles.size();
-
-  std::vector<std::size_t> open(operands.size(), 0);
-  std::vector<std::array<std::uint32_t, 3>> vertex_ids(triangles.size());  // welded per operand
-  std::vector<std::optional<core::SoupPolygon>> built(triangles.size());
-  arena.execute([&] {
-    // The closedness check (hashing, per operand) runs beside the triangle
-    // construction instead of before it.
-    tbb::task_group closedness;
-    closedness.run([&] {
-      tbb::parallel_for(std::size_t{0}, operands.size(), [&](std::size_t o) {
-        std::vector<std::array<IntPoint, 3>> corners;
-        corners.reserve(operand_begin[o + 1] - operand_begin[o]);
-        for (std::size_t i = operand_begin[o]; i < operand_begin[o + 1]; ++i) corners.push_back(triangles[i].p);
-        const core::WeldedTriangles welded = core::weld(corners);
-        open[o] = count_open_edges(welded);
-        std::copy(welded.ids.begin(), welded.ids.end(), vertex_ids.begin() + operand_begin[o]);
-      });
-    });
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 512),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                          const auto& t = triangles[i].p;
-                          std::optional<Polygon> poly = make_triangle(t[0], t[1], t[2]);
-                          if (!poly) continue;
-                          built[i].emplace(core::SoupPolygon{std::move(*poly), 0, triangles[i].operand, {}, {}});
-                          core::update_bounds(*built[i]);
-                        }
-                      });
-    closedness.wait();
-  });
+  result.stats.input_triangles = gi.triangles.size();
+  result.stats.dropped_degenerate = in.dropped_degenerate;
+  const std::array<std::int64_t, 3> lo = gi.lo, hi = gi.hi;
+  gi = {};
   for (std::size_t o = 0; o < operands.size(); ++o) {
     result.stats.operands[o].open_edges = open[o];
     if (open[o] == 0) continue;
@@ -238,27 +173,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     if (!options.allow_open) throw Error(msg + "; repair the mesh or allow open inputs (CLI: --allow-open)");
     result.warnings.push_back(msg + "; proceeding as requested, the result may have holes");
   }
-  // Ids in input order over the non-degenerate triangles: the total order of
-  // coplanar overlaps, independent of scheduling.
-  core::Soup soup;
-  std::vector<Source> sources;
-  core::GridTriangles grid;  // by soup id, for the solid proof
-  soup.reserve(triangles.size());
-  for (std::size_t i = 0; i < triangles.size(); ++i) {
-    if (!built[i]) {
-      ++result.stats.dropped_degenerate;
-      continue;
-    }
-    built[i]->id = static_cast<std::uint32_t>(sources.size());
-    sources.push_back({triangles[i].operand, triangles[i].face});
-    if (options.detect_solid) {
-      grid.corners.push_back(triangles[i].p);
-      grid.vertex_ids.push_back(vertex_ids[i]);
-    }
-    soup.push_back(std::move(*built[i]));
-  }
-  built = {};
-  vertex_ids = {};
+  core::Soup& soup = in.soup;
+  core::GridTriangles& grid = in.grid;
+  const std::vector<Provenance>& sources = in.sources;
 
   std::vector<core::OutputPolygon> polys;
   const auto setup_done = std::chrono::steady_clock::now();
@@ -308,10 +225,8 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   if (options.output == BooleanOptions::Output::Polygons) {
     arena.execute([&] { result.mesh = export_mesh(polys, q, sources, result.provenance, result.stats.dropped_slivers); });
   } else {
-    std::vector<Provenance> by_id(sources.size());
-    for (std::size_t i = 0; i < sources.size(); ++i) by_id[i] = {sources[i].operand, sources[i].face};
     core::MeshOutput m;
-    arena.execute([&] { m = core::build_triangle_mesh(polys, q, by_id); });
+    arena.execute([&] { m = core::build_triangle_mesh(polys, q, sources); });
     result.mesh = std::move(m.mesh);
     result.provenance = std::move(m.provenance);
     result.stats.tjunctions_resolved = m.stats.tjunctions;

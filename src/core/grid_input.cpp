@@ -1,8 +1,16 @@
 // Operands onto the grid and the audit of the rounding (see grid_input.hpp).
 #include "core/grid_input.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 
 #include "core/triangulate.hpp"
 #include "ember/error.hpp"
@@ -31,6 +39,22 @@ bool has_area(const std::array<ld, 3>& n, const Vec3d& a, const Vec3d& b, const 
   return n2 > std::ldexp(ld(1), -80) * len2(a, b) * len2(a, c);
 }
 
+/// What the grid did to an input triangle: -1 it had no area to begin
+/// with, 0 kept, 1 collapsed, 2 flipped.
+int rounding_change(const Mesh& m, const GridTriangle& t) {
+  const Vec3d& a = m.vertices[t.v[0]];
+  const Vec3d& b = m.vertices[t.v[1]];
+  const Vec3d& c = m.vertices[t.v[2]];
+  const std::array<ld, 3> n = cross(a, b, c);
+  if (!has_area(n, a, b, c)) return -1;
+  // Grid corners differ by < 2^26 per axis: the normal is exact in int64.
+  const std::int64_t ux = t.p[1].x - t.p[0].x, uy = t.p[1].y - t.p[0].y, uz = t.p[1].z - t.p[0].z;
+  const std::int64_t vx = t.p[2].x - t.p[0].x, vy = t.p[2].y - t.p[0].y, vz = t.p[2].z - t.p[0].z;
+  const std::int64_t g[3] = {uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
+  if (g[0] == 0 && g[1] == 0 && g[2] == 0) return 1;
+  return n[0] * g[0] + n[1] * g[1] + n[2] * g[2] < 0 ? 2 : 0;
+}
+
 std::string format_step(double step) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", step);
@@ -39,66 +63,162 @@ std::string format_step(double step) {
 
 }  // namespace
 
-GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q) {
-  GridInput g;
-  g.lo = {Quantizer::kLimit, Quantizer::kLimit, Quantizer::kLimit};
-  g.hi = {-Quantizer::kLimit, -Quantizer::kLimit, -Quantizer::kLimit};
-  std::vector<IntPoint> corners;
-  std::vector<std::array<std::uint32_t, 3>> tris;
-  for (std::size_t o = 0; o < operands.size(); ++o) {
-    const Mesh& m = operands[o];
-    g.operand_begin.push_back(g.triangles.size());
-    std::vector<IntPoint> grid(m.vertices.size());
-    std::vector<char> done(m.vertices.size(), 0);
-    for (const std::uint32_t v : m.indices)
-      if (!done[v]) {
-        grid[v] = q.quantize(m.vertices[v]);
-        done[v] = 1;
-        const std::int64_t c[3] = {grid[v].x, grid[v].y, grid[v].z};
-        for (int a = 0; a < 3; ++a) {
-          g.lo[a] = std::min(g.lo[a], c[a]);
-          g.hi[a] = std::max(g.hi[a], c[a]);
-        }
-      }
-    for (std::size_t f = 0; f < m.face_count(); ++f) {
-      const auto face = m.face(f);
-      corners.clear();
-      for (const std::uint32_t v : face) corners.push_back(grid[v]);
-      tris.clear();
-      triangulate_polygon(corners, tris);
-      for (const auto& t : tris)
-        g.triangles.push_back({{corners[t[0]], corners[t[1]], corners[t[2]]},
-                               {face[t[0]], face[t[1]], face[t[2]]},
-                               static_cast<std::uint32_t>(o),
-                               static_cast<std::uint32_t>(f)});
+Quantizer fit_used_vertices(std::span<const Mesh> operands) {
+  struct Bounds {
+    Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    void add(const Vec3d& p) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    void add(const Bounds& b) {
+      add(b.lo);
+      add(b.hi);
+    }
+  };
+  Bounds all;
+  bool any = false;
+  for (const Mesh& m : operands) {
+    if (m.indices.empty()) continue;
+    any = true;
+    // Min and max are exact and order-free, so the split does not matter.
+    all.add(tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, m.indices.size(), 4096), Bounds{},
+        [&](const tbb::blocked_range<std::size_t>& r, Bounds b) {
+          for (std::size_t i = r.begin(); i != r.end(); ++i) b.add(m.vertices[m.indices[i]]);
+          return b;
+        },
+        [](Bounds a, const Bounds& b) {
+          a.add(b);
+          return a;
+        }));
+  }
+  return any ? Quantizer::fit_box(all.lo, all.hi) : Quantizer{};
+}
+
+namespace {
+
+/// Grid positions of the vertices operand m's faces use (the others stay
+/// unset: they may lie outside the fitted box) and their bounds.
+struct GridVertices {
+  std::vector<IntPoint> pos;
+  std::vector<std::uint32_t> used;  ///< the used vertex indices, increasing
+};
+
+GridVertices quantize_used(const Mesh& m, const Quantizer& q) {
+  std::vector<std::uint8_t> is_used(m.vertices.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.indices.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      // Several faces share a vertex: every writer stores the same 1.
+                      for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        std::atomic_ref<std::uint8_t>(is_used[m.indices[i]]).store(1, std::memory_order_relaxed);
+                    });
+  GridVertices g;
+  g.pos.resize(m.vertices.size());
+  for (std::uint32_t v = 0; v < is_used.size(); ++v)
+    if (is_used[v]) g.used.push_back(v);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.used.size(), 2048),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        g.pos[g.used[i]] = q.quantize(m.vertices[g.used[i]]);
+                    });
+  return g;
+}
+
+/// Welded ids of the used vertices: vertices at equal grid positions share
+/// one id; ids follow the sorted positions. Returns the id count.
+std::size_t weld_grid_vertices(const GridVertices& g, std::vector<std::uint32_t>& id) {
+  std::vector<std::uint32_t> order = g.used;
+  const auto key = [&](std::uint32_t v) { return std::tuple(g.pos[v].x, g.pos[v].y, g.pos[v].z, v); };
+  tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+  id.assign(g.pos.size(), 0);
+  std::uint32_t next = 0;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    if (i > 0 && !(g.pos[order[i]] == g.pos[order[i - 1]])) ++next;
+    id[order[i]] = next;
+  }
+  return order.empty() ? 0 : next + 1;
+}
+
+void bound(GridInput& gi, const GridVertices& g) {
+  for (const std::uint32_t v : g.used) {
+    const std::int64_t c[3] = {g.pos[v].x, g.pos[v].y, g.pos[v].z};
+    for (int a = 0; a < 3; ++a) {
+      gi.lo[a] = std::min(gi.lo[a], c[a]);
+      gi.hi[a] = std::max(gi.hi[a], c[a]);
     }
   }
-  g.operand_begin.push_back(g.triangles.size());
-  return g;
+}
+
+/// Writes the n - 2 triangles of every face of operand o from `first` on.
+void triangulate_faces(const Mesh& m, std::uint32_t o, const GridVertices& g, const std::vector<std::uint32_t>& id,
+                       std::size_t first, GridInput& gi) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.face_count(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<IntPoint> corners;
+    std::vector<std::array<std::uint32_t, 3>> tris;
+    for (std::size_t f = r.begin(); f != r.end(); ++f) {
+      const auto face = m.face(f);
+      std::size_t out = first + m.face_offsets[f] - 2 * f;
+      const auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        const std::uint32_t va = face[a], vb = face[b], vc = face[c];
+        gi.triangles[out] = {{g.pos[va], g.pos[vb], g.pos[vc]}, {va, vb, vc}, o, static_cast<std::uint32_t>(f)};
+        gi.vertex_ids[out] = {id[va], id[vb], id[vc]};
+        ++out;
+      };
+      if (face.size() == 3) {
+        emit(0, 1, 2);
+        continue;
+      }
+      corners.clear();
+      for (const std::uint32_t v : face) corners.push_back(g.pos[v]);
+      tris.clear();
+      triangulate_polygon(corners, tris);
+      for (const auto& t : tris) emit(t[0], t[1], t[2]);
+    }
+  });
+}
+
+}  // namespace
+
+GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q) {
+  GridInput gi;
+  gi.lo = {Quantizer::kLimit, Quantizer::kLimit, Quantizer::kLimit};
+  gi.hi = {-Quantizer::kLimit, -Quantizer::kLimit, -Quantizer::kLimit};
+  gi.operand_begin.push_back(0);
+  for (const Mesh& m : operands)  // n - 2 triangles per face of n corners
+    gi.operand_begin.push_back(gi.operand_begin.back() + m.indices.size() - 2 * m.face_count());
+  gi.triangles.resize(gi.operand_begin.back());
+  gi.vertex_ids.resize(gi.operand_begin.back());
+  std::vector<std::uint32_t> id;
+  for (std::size_t o = 0; o < operands.size(); ++o) {
+    const GridVertices g = quantize_used(operands[o], q);
+    bound(gi, g);
+    gi.vertex_count.push_back(weld_grid_vertices(g, id));
+    triangulate_faces(operands[o], static_cast<std::uint32_t>(o), g, id, gi.operand_begin[o], gi);
+  }
+  return gi;
 }
 
 void audit_quantization(std::span<const Mesh> operands, const GridInput& grid, const Quantizer& q,
                         std::vector<OperandReport>& reports, std::vector<std::string>& warnings) {
   for (std::size_t o = 0; o < operands.size(); ++o) {
     OperandReport& r = reports[o];
-    std::size_t with_area = 0;
-    for (std::size_t i = grid.operand_begin[o]; i < grid.operand_begin[o + 1]; ++i) {
-      const GridTriangle& t = grid.triangles[i];
-      const Vec3d& a = operands[o].vertices[t.v[0]];
-      const Vec3d& b = operands[o].vertices[t.v[1]];
-      const Vec3d& c = operands[o].vertices[t.v[2]];
-      const std::array<ld, 3> n = cross(a, b, c);
-      if (!has_area(n, a, b, c)) continue;
-      ++with_area;
-      // Grid corners differ by < 2^26 per axis: the normal is exact in int64.
-      const std::int64_t ux = t.p[1].x - t.p[0].x, uy = t.p[1].y - t.p[0].y, uz = t.p[1].z - t.p[0].z;
-      const std::int64_t vx = t.p[2].x - t.p[0].x, vy = t.p[2].y - t.p[0].y, vz = t.p[2].z - t.p[0].z;
-      const std::int64_t g[3] = {uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
-      if (g[0] == 0 && g[1] == 0 && g[2] == 0)
-        ++r.collapsed_triangles;
-      else if (n[0] * g[0] + n[1] * g[1] + n[2] * g[2] < 0)
-        ++r.flipped_triangles;
-    }
+    // {with area, collapsed, flipped}: counts, so any split adds up the same.
+    using Counts = std::array<std::size_t, 3>;
+    const Counts counts = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(grid.operand_begin[o], grid.operand_begin[o + 1], 4096), Counts{},
+        [&](const tbb::blocked_range<std::size_t>& range, Counts c) {
+          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            const int change = rounding_change(operands[o], grid.triangles[i]);
+            if (change < 0) continue;
+            ++c[0];
+            if (change > 0) ++c[change];
+          }
+          return c;
+        },
+        [](Counts a, const Counts& b) { return Counts{a[0] + b[0], a[1] + b[1], a[2] + b[2]}; });
+    const std::size_t with_area = counts[0];
+    r.collapsed_triangles = counts[1];
+    r.flipped_triangles = counts[2];
     r.triangles = grid.operand_begin[o + 1] - grid.operand_begin[o];
     const std::size_t changed = r.collapsed_triangles + r.flipped_triangles;
     if (changed == 0) continue;

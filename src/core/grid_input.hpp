@@ -28,11 +28,25 @@ struct GridTriangle {
 
 struct GridInput {
   std::vector<GridTriangle> triangles;    ///< operand by operand, faces in order
+  /// Per triangle, its corners' welded grid vertex ids: within one operand,
+  /// equal ids iff equal grid positions (numbered in sorted position order,
+  /// so independent of scheduling). For edge matching (closedness, the
+  /// proof's components).
+  std::vector<std::array<std::uint32_t, 3>> vertex_ids;
   std::vector<std::size_t> operand_begin;  ///< operand o's triangles: [begin[o], begin[o+1])
+  std::vector<std::size_t> vertex_count;   ///< per operand: how many welded ids it has
   std::array<std::int64_t, 3> lo{}, hi{};  ///< bounds of all grid vertices
 };
 
-/// Quantizes and triangulates every face of every operand with q.
+/// The quantization map fitted to the vertices that faces use (the bounding
+/// box of all operands together), computed in parallel. The operands must
+/// have passed validation (indices in range, finite coordinates).
+Quantizer fit_used_vertices(std::span<const Mesh> operands);
+
+/// Quantizes, welds and triangulates every face of every operand with q, in
+/// parallel (run it inside the Boolean's task arena). A face of n corners
+/// becomes n - 2 triangles, so face f's triangles start at
+/// face_offsets[f] - 2 f and the layout does not depend on scheduling.
 GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q);
 
 /// Counts per operand the triangles the grid collapsed or flipped (into

@@ -1,0 +1,148 @@
+// Validation, closedness and the root soup (see input_soup.hpp).
+#include "core/input_soup.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_scan.h>
+
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include "core/weld.hpp"
+#include "ember/error.hpp"
+
+namespace ember::core {
+
+namespace {
+
+std::string operand_name(std::size_t i) { return "operand " + std::to_string(i); }
+
+/// What is wrong with face f, or nothing. Only for offsets already known to
+/// be non-decreasing (then every face's span lies inside `indices`).
+std::optional<std::string> face_problem(const Mesh& m, std::size_t f) {
+  if (m.face_size(f) < 3)
+    return "face " + std::to_string(f) + " has " + std::to_string(m.face_size(f)) +
+           " vertices; faces need at least 3";
+  for (const std::uint32_t v : m.face(f))
+    if (v >= m.vertices.size())
+      return "face " + std::to_string(f) + " uses vertex index " + std::to_string(v) + ", but the mesh has " +
+             std::to_string(m.vertices.size()) + " vertices";
+  return std::nullopt;
+}
+
+bool finite(const Vec3d& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+
+/// The lowest i in [0, n) with bad(i), or n: parallel, the answer does not
+/// depend on the split.
+template <typename Bad>
+std::size_t first_bad(std::size_t n, Bad&& bad) {
+  std::atomic<std::size_t> first{n};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 2048), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end() && i < first.load(std::memory_order_relaxed); ++i)
+      if (bad(i)) {
+        std::size_t seen = first.load(std::memory_order_relaxed);
+        while (i < seen && !first.compare_exchange_weak(seen, i, std::memory_order_relaxed)) {
+        }
+        return;
+      }
+  });
+  return first.load();
+}
+
+}  // namespace
+
+void validate_operands(std::span<const Mesh> operands) {
+  for (std::size_t o = 0; o < operands.size(); ++o) {
+    const Mesh& m = operands[o];
+    if (m.face_offsets.empty() || m.face_offsets.front() != 0 || m.face_offsets.back() != m.indices.size())
+      throw Error(operand_name(o) + ": face_offsets must start at 0 and end at indices.size()");
+    const std::size_t d = first_bad(m.face_count(), [&](std::size_t i) { return m.face_offsets[i + 1] < m.face_offsets[i]; });
+    if (d < m.face_count())
+      throw Error(operand_name(o) + ": face_offsets must not decrease (face " + std::to_string(d) + ")");
+    const std::size_t f = first_bad(m.face_count(), [&](std::size_t i) { return face_problem(m, i).has_value(); });
+    if (f < m.face_count()) throw Error(operand_name(o) + ": " + *face_problem(m, f));
+    const std::size_t v = first_bad(m.vertices.size(), [&](std::size_t i) { return !finite(m.vertices[i]); });
+    if (v < m.vertices.size())
+      throw Error(operand_name(o) + ": vertex " + std::to_string(v) +
+                  " has a non-finite coordinate (NaN or infinity); fix or remove it");
+  }
+}
+
+std::vector<std::size_t> count_open_edges(const GridInput& gi) {
+  const std::size_t operands = gi.vertex_count.size();
+  std::vector<std::size_t> open(operands, 0);
+  tbb::parallel_for(std::size_t{0}, operands, [&](std::size_t o) {
+    WeldedTriangles welded;
+    welded.ids.assign(gi.vertex_ids.begin() + static_cast<std::ptrdiff_t>(gi.operand_begin[o]),
+                      gi.vertex_ids.begin() + static_cast<std::ptrdiff_t>(gi.operand_begin[o + 1]));
+    welded.vertex_count = gi.vertex_count[o];
+    for_each_edge(welded, [&](std::span<const EdgeUse> uses) {
+      int balance = 0;
+      for (const EdgeUse& u : uses) balance += u.forward ? 1 : -1;
+      open[o] += balance != 0;
+    });
+  });
+  return open;
+}
+
+InputSoup build_soup(const GridInput& gi, bool keep_grid) {
+  const std::size_t n = gi.triangles.size();
+  // Pass 1: which triangles have area. |corner differences| < 2^26, so the
+  // cross product's terms are < 2^52 and its components exact in int64
+  // (make_triangle decides the same, exactly).
+  std::vector<std::uint32_t> id(n + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const auto& p = gi.triangles[i].p;
+      const std::int64_t ux = p[1].x - p[0].x, uy = p[1].y - p[0].y, uz = p[1].z - p[0].z;
+      const std::int64_t vx = p[2].x - p[0].x, vy = p[2].y - p[0].y, vz = p[2].z - p[0].z;
+      id[i + 1] = (uy * vz - uz * vy) != 0 || (uz * vx - ux * vz) != 0 || (ux * vy - uy * vx) != 0;
+    }
+  });
+  // Ids in input order over the kept triangles: an exclusive prefix sum.
+  static_assert(sizeof(std::uint32_t) == 4);
+  if (n >= std::numeric_limits<std::uint32_t>::max()) throw Error("boolean: more than 2^32 - 1 input triangles");
+  tbb::parallel_scan(
+      tbb::blocked_range<std::size_t>(1, n + 1, 1 << 14), std::uint32_t{0},
+      [&](const tbb::blocked_range<std::size_t>& r, std::uint32_t sum, bool final) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          sum += id[i];
+          if (final) id[i] = sum;
+        }
+        return sum;
+      },
+      [](std::uint32_t a, std::uint32_t b) { return a + b; });
+  InputSoup in;
+  const std::size_t kept = id[n];
+  in.dropped_degenerate = n - kept;
+  in.soup.resize(kept);
+  in.sources.resize(kept);
+  if (keep_grid) {
+    in.grid.corners.resize(kept);
+    in.grid.vertex_ids.resize(kept);
+  }
+  // Pass 2: triangle i (kept when id[i + 1] > id[i]) becomes polygon id[i].
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      if (id[i + 1] == id[i]) continue;
+      const GridTriangle& t = gi.triangles[i];
+      const std::uint32_t k = id[i];
+      SoupPolygon& p = in.soup[k];
+      p.poly = *make_triangle(t.p[0], t.p[1], t.p[2]);  // has area: pass 1
+      p.id = k;
+      p.operand = t.operand;
+      update_bounds(p);
+      in.sources[k] = {t.operand, t.face};
+      if (keep_grid) {
+        in.grid.corners[k] = t.p;
+        in.grid.vertex_ids[k] = gi.vertex_ids[i];
+      }
+    }
+  });
+  return in;
+}
+
+}  // namespace ember::core

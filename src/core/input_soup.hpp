@@ -1,0 +1,36 @@
+#pragma once
+// The Boolean's input stage after quantization (grid_input.hpp): validation
+// of the caller's meshes, closedness, and the soup the core solves. Every
+// step is parallel and its result independent of scheduling.
+#include <span>
+#include <vector>
+
+#include "core/grid_input.hpp"
+#include "core/soup.hpp"
+#include "core/solid_check.hpp"
+#include "ember/mesh.hpp"
+
+namespace ember::core {
+
+/// Throws ember::Error naming the first problem (lowest operand, then lowest
+/// face or vertex): face offsets that do not frame `indices`, faces with
+/// fewer than 3 corners, vertex indices out of range, non-finite coordinates.
+void validate_operands(std::span<const Mesh> operands);
+
+/// Per operand, the undirected edges whose uses in one direction are not
+/// matched by uses in the other (on the welded grid positions, degenerate
+/// triangles included: the surface the core actually sees). 0 = closed.
+std::vector<std::size_t> count_open_edges(const GridInput& gi);
+
+/// The non-degenerate grid triangles as the root soup: ids in input order
+/// (the total order of coplanar overlaps), sources[id] their origin, and,
+/// when `keep_grid`, grid.corners / grid.vertex_ids by id for the solid proof.
+struct InputSoup {
+  Soup soup;
+  std::vector<Provenance> sources;
+  GridTriangles grid;
+  std::size_t dropped_degenerate = 0;
+};
+InputSoup build_soup(const GridInput& gi, bool keep_grid);
+
+}  // namespace ember::core
