@@ -6,11 +6,14 @@
 #   scripts/bench.sh [--quick] [--threads 1,2] [--runs 5] [--out DIR] [more bench.py options]
 #
 # One command: installs what it needs (apt: cmake, g++, libcgal-dev, libtbb-dev,
-# python3-matplotlib, nodejs/npm; npm: manifold-3d into bench/peers/node_modules),
+# python3-matplotlib, valgrind, nodejs/npm; npm: manifold-3d into bench/peers/node_modules),
 # builds ember_bench and cgal_runner into build-bench/ (-DEMBER_BUILD_PEERS=ON),
 # runs every case over ../shared/data and writes DIR (default bench-results/):
 #   results.csv  one row per case and operation (times, ratios, throughput, RSS, volumes, failures)
-#   summary.md   geometric means, ratios, throughput, failures, volume check, machine, date
+#   summary.md   geometric means, per-case times and ratios, throughput, per-phase times,
+#                thread scaling, first-run times, peak RSS and instructions (callgrind) per input
+#                triangle, failures, volume check, machine, date; printed at the end and, on a
+#                full run, copied to docs/benchmark-results.md
 #   time_vs_size.png  time vs input triangles (log-log), one series per tool
 # Options:
 #   --quick        a few small cases (smoke run, ~3 min)
@@ -25,14 +28,18 @@ cd "$(dirname "$0")/.."
 ROOT=$PWD
 
 install=1
+quick=0
 pass=()
 for a in "$@"; do
   if [[ "$a" == "--no-install" ]]; then install=0; else pass+=("$a"); fi
+  [[ "$a" == "--quick" ]] && quick=1
 done
+# A full run is the project's published figure: it regenerates docs/benchmark-results.md.
+[[ $quick == 0 ]] && pass+=(--docs "$ROOT/docs/benchmark-results.md")
 
 if [[ $install == 1 ]]; then
   need_apt=()
-  for p in cmake g++ libtbb-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev python3 python3-matplotlib; do
+  for p in cmake g++ libtbb-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev python3 python3-matplotlib valgrind; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || need_apt+=("$p")
   done
   # node/npm may come from elsewhere than Debian; only ask apt when they are missing

@@ -31,6 +31,8 @@ import tempfile
 import time
 from pathlib import Path
 
+import profile_tables
+
 OPS = ["union", "intersection", "difference"]
 REPO = Path(__file__).resolve().parents[2]
 T_START = time.monotonic()
@@ -183,7 +185,8 @@ def run_tool(base_cmd: list[str], ops: list[str], args, cwd: Path | None = None)
     results: dict[str, dict] = {}
     remaining = list(ops)
     while remaining:
-        cmd = base_cmd + ["--ops", ",".join(remaining), "--runs", str(args.runs), "--budget-ms", str(args.budget_ms)]
+        cmd = base_cmd + ["--ops", ",".join(remaining), "--runs", str(args.runs), "--budget-ms", str(args.budget_ms),
+                          "--warmup", str(args.warmup)]
         out, err, rc, rss, status = run_process(cmd, args.timeout, cwd)
         got = []
         for line in out.splitlines():
@@ -288,7 +291,15 @@ def main() -> int:
     ap.add_argument("--runs", type=int, default=5, help="timed runs per case/tool/op; the median is reported")
     ap.add_argument("--budget-ms", type=float, default=None,
                     help="stop repeating a case/tool/op once this much time was spent (at least one run)")
+    ap.add_argument("--warmup", type=int, default=1,
+                    help="untimed runs before the timed ones, for every tool alike (the first is reported as the "
+                         "cold time)")
     ap.add_argument("--timeout", type=float, default=None, help="seconds per runner process")
+    ap.add_argument("--docs", default=None, help="also write summary.md to this file (bench.sh: "
+                                                 "docs/benchmark-results.md on full runs)")
+    ap.add_argument("--instructions-mesh", default="peer-tests/InteractiveAndRobustMeshBooleans/bunny25k.obj",
+                    help="mesh (under --data) of the callgrind count: it united with its copy rotated by "
+                         "--scaling-angle; '' skips the count")
     ap.add_argument("--pairs", type=int, default=None, help="number of random pool pairs (default 40, quick 3)")
     ap.add_argument("--seed", type=int, default=20220704)
     ap.add_argument("--offset", type=float, default=0.15,
@@ -423,6 +434,9 @@ def main() -> int:
                 row[f"{tool}_rss_mib"] = o.get("rss_mib")
                 row[f"{tool}_mtris_per_s"] = (in_tris / o["median_ms"] / 1e3) if ok and o.get("median_ms") else None
                 row[f"{tool}_error"] = o.get("error", "") if not ok else ""
+                row[f"{tool}_cold_ms"] = o.get("cold_ms") if ok else None
+                for ph in profile_tables.PHASES:
+                    row[f"{tool}_{ph}_ms"] = o.get(f"{ph}_ms") if ok else None
             ref = ember_cols[0] if ember_cols[0] in res else None
             for e in ember_cols:
                 for peer in ("cgal", "manifold"):
@@ -446,10 +460,22 @@ def main() -> int:
         write_summary(outdir / "summary.md", rows, tool_names, args, info, f"{ci + 1} of {len(cases)}")
     if not args.keep_meshes:
         shutil.rmtree(meshdir, ignore_errors=True)
+    args.instructions = None
+    if args.instructions_mesh and "ember" in tools:
+        log(f"callgrind: {args.instructions_mesh} union, 1 thread")
+        rot = axis_angle((1.0, 2.0, 3.0), args.scaling_angle)
+        args.instructions = profile_tables.count_instructions(ember_bench, data, args.instructions_mesh,
+                                                              colmajor(rot, (0, 0, 0)), log)
+        if args.instructions:
+            log(f"    {args.instructions['per_triangle']:.0f} instructions per input triangle")
 
     write_csv(outdir / "results.csv", rows, tool_names)
     write_plot(outdir / "time_vs_size.png", rows, tool_names)
     write_summary(outdir / "summary.md", rows, tool_names, args, info, str(len(cases)))
+    print((outdir / "summary.md").read_text())
+    if args.docs:
+        shutil.copyfile(outdir / "summary.md", args.docs)
+        log(f"wrote {args.docs}")
     log(f"done: {outdir / 'results.csv'}, {outdir / 'summary.md'}, {outdir / 'time_vs_size.png'}")
     return 0
 
@@ -473,7 +499,9 @@ def replot(outdir: Path) -> int:
 def write_csv(path: Path, rows: list[dict], tools: list[str]) -> None:
     cols = ["case", "group", "mesh_a", "mesh_b", "op", "in_triangles"]
     for t in tools:
-        cols += [f"{t}_ms", f"{t}_runs", f"{t}_mtris_per_s", f"{t}_rss_mib", f"{t}_out_polygons"]
+        cols += [f"{t}_ms", f"{t}_runs", f"{t}_mtris_per_s", f"{t}_rss_mib", f"{t}_out_polygons", f"{t}_cold_ms"]
+        if t.startswith("ember"):
+            cols += [f"{t}_{ph}_ms" for ph in profile_tables.PHASES]
     cols += [c for c in (rows[0].keys() if rows else []) if c.startswith("ratio_")]
     for r in rows:
         for c in r:
@@ -540,7 +568,8 @@ def write_summary(path: Path, rows: list[dict], tools: list[str], args, info: di
     L.append(f"- ember: {info.get('ember_rev', '?')}, threads {args.threads}; CGAL {info['cgal']} (Epick, "
              f"Surface_mesh, corefinement, 1 thread); manifold-3d {info['manifold']} (WASM, node {info['node']}, 1 thread)")
     L.append(f"- cases: {ncases} ({'quick' if args.quick else 'full'} run); seed {args.seed}; "
-             f"median of up to {args.runs} runs, fewer once {args.budget_ms:.0f} ms were spent on one case/tool/op")
+             f"{args.warmup} untimed warm-up run(s), then the median of up to {args.runs} runs, fewer once "
+             f"{args.budget_ms:.0f} ms were spent on one case/tool/op (same for every tool)")
     L.append("- timed region: flat arrays in -> Boolean -> flat arrays out, in each tool's own process; file "
              "I/O excluded. **CGAL's time includes building both Surface_mesh from the arrays and copying the "
              "result back**; Manifold's includes building Mesh/Manifold objects and getMesh(); ember's includes "
@@ -604,6 +633,13 @@ def write_summary(path: Path, rows: list[dict], tools: list[str], args, info: di
                      " | ".join(fmt(r.get(f"{t}_ms")) for t in tools) + " | " +
                      " | ".join(fmt(r.get(f"{t}_rss_mib")) for t in tools) + " |")
         L.append("")
+
+    L += profile_tables.phase_section(rows, tools)
+    L += profile_tables.scaling_section(rows, tools, args.threads)
+    L += profile_tables.cold_section(rows, tools)
+    L += profile_tables.memory_section(rows, tools)
+    L += profile_tables.instructions_section(getattr(args, "instructions", None))
+    L += profile_tables.per_case_section(rows, tools)
 
     fails = [(r, t) for r in rows for t in tools if r.get(f"{t}_error") or r.get("prepare_error")]
     L.append(f"## Failures ({len(fails)})\n")

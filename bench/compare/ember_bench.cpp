@@ -9,16 +9,21 @@
 //       tools, Manifold included, get bit-identical input) and writes the
 //       benchmark's binary format (meshbin.hpp). Prints {"triangles":..,"vertices":..}.
 //
-//   ember_bench run A.bin B.bin [--ops ..] [--runs R] [--budget-ms B] [--threads T] [--solid] [--no-detect]
+//   ember_bench run A.bin B.bin [--ops ..] [--runs R] [--budget-ms B] [--threads T] [--warmup W]
+//                   [--solid] [--no-detect]
 //       Times ember::boolean in-process: building the two ember::Mesh from the
 //       flat arrays + the Boolean (its output is already flat arrays). One JSON
-//       line per operation (runner_common.hpp).
+//       line per operation (runner_common.hpp), with the median of each phase
+//       of BooleanStats (setup_ms, proof_ms, solve_ms, output_ms).
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <map>
 #include <sstream>
 #include <string>
+#include <span>
 #include <utility>
+#include <vector>
 
 #include "ember/boolean.hpp"
 #include "ember/io/mesh_io.hpp"
@@ -104,6 +109,25 @@ int prepare(int argc, char** argv) {
   return 0;
 }
 
+/// The median of each phase of the timed runs, as JSON members
+/// (,"setup_ms":..,"proof_ms":..,"solve_ms":..,"output_ms":..).
+std::string phase_medians(std::span<const ember::BooleanStats> runs) {
+  const auto median = [&](double ember::BooleanStats::*field) {
+    std::vector<double> v;
+    for (const ember::BooleanStats& s : runs) v.push_back(s.*field);
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+  };
+  std::string out;
+  for (const auto& [name, field] : {std::pair{"setup_ms", &ember::BooleanStats::setup_ms},
+                                    std::pair{"proof_ms", &ember::BooleanStats::proof_ms},
+                                    std::pair{"solve_ms", &ember::BooleanStats::solve_ms},
+                                    std::pair{"output_ms", &ember::BooleanStats::output_ms}})
+    out += std::string(",\"") + name + "\":" + bench::json_number(median(field));
+  return out;
+}
+
 ember::Mesh to_ember(const bench::TriMesh& t) {
   ember::Mesh m;
   const std::size_t nv = t.vertex_count(), nt = t.triangle_count();
@@ -129,11 +153,13 @@ int run(int argc, char** argv) {
     opt.all_solid = args.solid;
     opt.detect_solid = !args.no_detect;
     ember::BooleanResult last;
+    std::vector<ember::BooleanStats> stats;  // every run's, warm-up runs first
     bench::time_op(
         "ember", args, op, in_tris,
         [&](bench::OpOutput&) {
           std::array<ember::Mesh, 2> operands{to_ember(a), to_ember(b)};
           last = ember::boolean(std::span<const ember::Mesh>(operands), o, opt);
+          stats.push_back(last.stats);
         },
         [&](bench::OpOutput& out) {
           const ember::Mesh& m = last.mesh;
@@ -141,7 +167,8 @@ int run(int argc, char** argv) {
           out.volume = bench::signed_volume(t.xyz, t.tri);
           out.polygons = m.face_count();
           if (!last.warnings.empty()) out.error = "warning: " + last.warnings.front();
-        });
+        },
+        [&] { return phase_medians(std::span(stats).subspan(std::min<std::size_t>(args.warmup, stats.size()))); });
   }
   return 0;
 }

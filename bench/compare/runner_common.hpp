@@ -3,12 +3,16 @@
 // benchmark (ember_bench run, cgal_runner). See docs/benchmark.md.
 //
 //   RUNNER A.bin B.bin [--ops union,intersection,difference] [--runs R]
-//          [--budget-ms B] [--threads T]
+//          [--budget-ms B] [--threads T] [--warmup W]
 //
 // For every operation one JSON line goes to stdout (flushed at once, so a
 // crash in a later operation keeps the earlier ones):
-//   {"tool":..,"op":..,"ok":true,"runs":n,"median_ms":..,"times_ms":[..],
-//    "out_polygons":..,"out_volume":..,"in_triangles":..,"peak_rss_kib":..,"error":""}
+//   {"tool":..,"op":..,"ok":true,"runs":n,"median_ms":..,"times_ms":[..],"cold_ms":..,
+//    "out_polygons":..,"out_volume":..,"in_triangles":..,"peak_rss_kib":..,"error":"",...}
+// --warmup W runs the operation W times untimed first (the first of them,
+// in a fresh process, is reported as cold_ms): the median then describes a
+// Boolean in a loop, as in the users' milling and batch workloads, and
+// cold_ms the one-shot cost (first touch of memory, thread start-up).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -27,6 +31,7 @@ struct RunnerArgs {
   int runs = 5;
   double budget_ms = 1e300;  // stop repeating once this much time was spent (at least one run)
   int threads = 1;
+  int warmup = 0;  // untimed runs before the timed ones (the first reported as cold_ms)
   bool solid = false;  // ember only: BooleanOptions::all_solid (--assume-solid)
   bool no_detect = false;  // ember only: BooleanOptions::detect_solid = false
 };
@@ -51,6 +56,8 @@ inline RunnerArgs parse_runner_args(int argc, char** argv, int first) {
       r.budget_ms = std::stod(next());
     } else if (s == "--threads") {
       r.threads = std::stoi(next());
+    } else if (s == "--warmup") {
+      r.warmup = std::max(0, std::stoi(next()));
     } else if (s == "--solid") {
       r.solid = true;
     } else if (s == "--no-detect") {
@@ -76,13 +83,16 @@ struct OpOutput {
 /// Runs `once` up to args.runs times (fewer if the budget is spent) and prints
 /// the JSON line. `once(out)` performs one complete timed run; its wall time
 /// (steady clock) is what is measured. `post(out)` runs after the last timing
-/// (untimed) to compute volume and counts from the last result.
+/// (untimed) to compute volume and counts from the last result. `extra()`,
+/// if given, returns more JSON members (",\"name\":value...") to append.
 inline void time_op(const char* tool, const RunnerArgs& args, const std::string& op, std::size_t in_triangles,
-                    const std::function<void(OpOutput&)>& once, const std::function<void(OpOutput&)>& post) {
+                    const std::function<void(OpOutput&)>& once, const std::function<void(OpOutput&)>& post,
+                    const std::function<std::string()>& extra = {}) {
   std::vector<double> times;
   OpOutput out;
   double total = 0;
-  for (int r = 0; r < args.runs; ++r) {
+  double cold_ms = -1;
+  for (int r = 0; r < args.warmup + args.runs; ++r) {
     OpOutput o;
     auto t0 = std::chrono::steady_clock::now();
     try {
@@ -98,6 +108,10 @@ inline void time_op(const char* tool, const RunnerArgs& args, const std::string&
     double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
     out = o;
     if (!o.ok) break;
+    if (r < args.warmup) {
+      if (r == 0) cold_ms = ms;
+      continue;
+    }
     times.push_back(ms);
     total += ms;
     if (total >= args.budget_ms) break;
@@ -124,10 +138,11 @@ inline void time_op(const char* tool, const RunnerArgs& args, const std::string&
   }
   std::printf(
       "{\"tool\":\"%s\",\"op\":\"%s\",\"threads\":%d,\"ok\":%s,\"runs\":%zu,\"median_ms\":%s,\"times_ms\":[%s],"
-      "\"out_polygons\":%zu,\"out_volume\":%s,\"in_triangles\":%zu,\"peak_rss_kib\":%ld,\"error\":\"%s\"}\n",
+      "\"cold_ms\":%s,\"out_polygons\":%zu,\"out_volume\":%s,\"in_triangles\":%zu,\"peak_rss_kib\":%ld,\"error\":\"%s\"%s}\n",
       tool, op.c_str(), args.threads, out.ok ? "true" : "false", times.size(),
-      out.ok ? json_number(median).c_str() : "null", ts.c_str(), out.polygons,
-      out.ok ? json_number(out.volume).c_str() : "null", in_triangles, peak_rss_kib(), json_escape(out.error).c_str());
+      out.ok ? json_number(median).c_str() : "null", ts.c_str(), cold_ms >= 0 ? json_number(cold_ms).c_str() : "null",
+      out.polygons, out.ok ? json_number(out.volume).c_str() : "null", in_triangles, peak_rss_kib(),
+      json_escape(out.error).c_str(), out.ok && extra ? extra().c_str() : "");
   std::fflush(stdout);
 }
 

@@ -1,6 +1,6 @@
 // Manifold peer of the comparison benchmark (issue 4); driven by bench/compare/bench.py.
 //
-//   node manifold_runner.mjs A.bin B.bin [--ops ..] [--runs R] [--budget-ms B]
+//   node manifold_runner.mjs A.bin B.bin [--ops ..] [--runs R] [--budget-ms B] [--warmup W]
 //
 // Uses the manifold-3d WASM build from the npm registry (single-threaded).
 // Reading the binary files (bench/compare/meshbin.hpp) and converting them to
@@ -30,15 +30,17 @@ const pos = [];
 let ops = ['union', 'intersection', 'difference'];
 let runs = 5;
 let budget = Infinity;
+let warmup = 0; // untimed runs first; the first one is reported as cold_ms (runner_common.hpp)
 for (let i = 0; i < argv.length; ++i) {
   if (argv[i] === '--ops') ops = argv[++i].split(',').filter((s) => s);
   else if (argv[i] === '--runs') runs = Math.max(1, parseInt(argv[++i], 10));
   else if (argv[i] === '--budget-ms') budget = parseFloat(argv[++i]);
+  else if (argv[i] === '--warmup') warmup = Math.max(0, parseInt(argv[++i], 10));
   else if (argv[i] === '--threads') ++i;
   else pos.push(argv[i]);
 }
 if (pos.length !== 2) {
-  console.error('usage: node manifold_runner.mjs A.bin B.bin [--ops ..] [--runs R] [--budget-ms B]');
+  console.error('usage: node manifold_runner.mjs A.bin B.bin [--ops ..] [--runs R] [--budget-ms B] [--warmup W]');
   process.exit(2);
 }
 
@@ -75,7 +77,8 @@ for (const op of ops) {
   let last = null;
   let error = '';
   let total = 0;
-  for (let r = 0; r < runs; ++r) {
+  let coldMs = null;
+  for (let r = 0; r < warmup + runs; ++r) {
     const t0 = performance.now();
     try {
       last = once(op);
@@ -85,6 +88,10 @@ for (const op of ops) {
       break;
     }
     const ms = performance.now() - t0;
+    if (r < warmup) {
+      if (r === 0) coldMs = ms;
+      continue;
+    }
     times.push(ms);
     total += ms;
     if (total >= budget) break;
@@ -95,7 +102,7 @@ for (const op of ops) {
   const median = n === 0 ? null : n % 2 ? sorted[(n - 1) / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
   const line = {
     tool: 'manifold', op, threads: 1, ok, runs: ok ? times.length : 0,
-    median_ms: ok ? median : null, times_ms: ok ? times : [],
+    median_ms: ok ? median : null, times_ms: ok ? times : [], cold_ms: ok ? coldMs : null,
     out_polygons: ok ? last.tri.length / 3 : 0,
     out_volume: ok ? signedVolume(last.vert, last.tri, last.numProp) : null,
     in_triangles: A.nt + B.nt,
