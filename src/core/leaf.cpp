@@ -193,6 +193,7 @@ bool on_box_face(const SoupPolygon& t, const Box& box) {
 void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, const std::vector<std::uint32_t>& direction,
             LeafScratch& sc) {
   const std::uint32_t t_direction = direction[static_cast<std::size_t>(&t - soup.data())];
+  const bool t_solid = ctx.solid[t.operand] != 0;
   sc.related.clear();
   sc.related_at.clear();
   sc.related_signs.clear();
@@ -211,10 +212,10 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
   };
   for (std::size_t i = 0; i < soup.size(); ++i) {
     const SoupPolygon& o = soup[i];
-    if (o.id == t.id || !boxes_overlap(t, o)) continue;
     // Two polygons of one solid operand never cross or overlap (NSI), and the
-    // solid operand's own winding numbers at t are known (0 / 1).
-    if (o.operand == t.operand && ctx.solid[t.operand]) continue;
+    // solid operand's own winding numbers at t are known (0 / 1). (Checked
+    // before the boxes: it is cheaper and skips half of a two-solid leaf.)
+    if ((o.operand == t.operand && t_solid) || o.id == t.id || !boxes_overlap(t, o)) continue;
     bool front = false, back = false;
     // Coplanar first: one plane comparison instead of exact zero tests of
     // every vertex (stacks are full of them).
@@ -366,17 +367,18 @@ std::uint64_t mix(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-/// Classifies one enabled piece of t: returns false if no valid path was
-/// found (never happens for non-degenerate pieces in practice).
+/// Where the axis-k line through the dyadic target (u, v) meets t's plane,
+/// if that point lies strictly inside the piece f.
+bool interior_point(const SoupPolygon& t, const Polygon& f, const Dyadic& target, int k, AxisPoint& x) {
+  return meet(axis_line(target, k), t.poly.support, x) && locate(f, x) < 0;
+}
+
 /// Traces from the leaf's reference point to the piece through the dyadic
-/// target (u, v) on the piece's dominant axis k. False if (u, v) is not
-/// strictly inside the piece's projection or the path meets something
+/// target (u, v) on the piece's dominant axis k, whose line meets the piece
+/// strictly inside at x (interior_point). False if the path meets something
 /// degenerately.
-bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Polygon& f, const Dyadic& target, int k,
+bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Dyadic& target, int k, const AxisPoint& x,
                       bool i_first, bool solid, Wnv& w, Wnv& delta, Wnv& w_front, Wnv& w_back) {
-  const Plane& S = t.poly.support;
-  AxisPoint x;
-  if (!meet(axis_line(target, k), S, x) || locate(f, x) >= 0) return false;
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   const std::array<int, 3> order = i_first ? std::array<int, 3>{i, j, k} : std::array<int, 3>{j, i, k};
   w = pb.ref_w;
@@ -432,8 +434,8 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
       target.num[i] = static_cast<__int128>(std::nearbyint(ci * scale));
       target.num[j] = static_cast<__int128>(std::nearbyint(cj * scale));
       AxisPoint x;
-      if (!meet(axis_line(target, k), S, x) || locate(f, x) >= 0) continue;
-      if (classify_through(pb, t, f, target, k, attempt % 2 == 0, solid, w, delta, w_front, w_back)) return true;
+      if (!interior_point(t, f, target, k, x)) continue;
+      if (classify_through(pb, t, target, k, x, attempt % 2 == 0, solid, w, delta, w_front, w_back)) return true;
       break;  // inside but the path is degenerate: next guess
     }
   }
@@ -454,8 +456,10 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
         const __int128 q = sum >= 0 ? (sum + 6) / 12 : -((-sum + 6) / 12);
         target.num[axis] = q;
       }
+      AxisPoint x;
+      if (!interior_point(t, f, target, k, x)) continue;
       for (const bool i_first : {true, false})
-        if (classify_through(pb, t, f, target, k, i_first, solid, w, delta, w_front, w_back)) return true;
+        if (classify_through(pb, t, target, k, x, i_first, solid, w, delta, w_front, w_back)) return true;
     }
   }
   return false;
