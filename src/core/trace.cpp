@@ -67,7 +67,7 @@ bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int 
 }
 
 bool add_crossing(const AxisSegment& s, const SoupPolygon& p, Wnv& w) {
-  if (box_disjoint(p, s.lo, s.hi)) return true;
+  if (box_disjoint(p, s.lo, s.hi) || line_clearly_misses(s.line, p.poly)) return true;
   const SegmentHit h = intersect_segment(s.line, s.r0, s.r1, p.poly);
   switch (h.kind) {
     case LineHit::Miss:

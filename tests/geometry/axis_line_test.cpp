@@ -2,6 +2,7 @@
 // general (oracle-tested) intersect_segment on the same line.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "ember/geometry.hpp"
@@ -105,6 +106,59 @@ TEST(AxisLine, FilteredClassifyMatchesExactNearPlanes) {
     }
   }
   EXPECT_GT(checked, 4000);
+}
+
+/// A point on the segment a -> b at parameter num/den, on the 2^s grid of the
+/// line's plane coordinates (u, v).
+std::array<__int128, 2> on_segment(const Point& a, const Point& b, int u, int v, int s, double t) {
+  const auto& fa = a.f;
+  const auto& fb = b.f;
+  return {static_cast<__int128>(std::nearbyint(std::ldexp(fa[u] + t * (fb[u] - fa[u]), s))),
+          static_cast<__int128>(std::nearbyint(std::ldexp(fa[v] + t * (fb[v] - fa[v]), s)))};
+}
+
+TEST(AxisLine, ClearMissFilterNeverContradictsTheExactTest) {
+  // Clipped triangles at full coordinate range (vertices with large w, so the
+  // cached doubles carry their full error) against lines through points at,
+  // just inside and just outside their edges, at every dyadic resolution.
+  std::mt19937_64 rng(2022);
+  std::uniform_int_distribution<std::int64_t> coord(-kCoordLimit, kCoordLimit);
+  const auto point = [&] { return IntPoint{coord(rng), coord(rng), coord(rng)}; };
+  int filtered = 0, exact_misses = 0, checked = 0;
+  for (int it = 0; it < 3000; ++it) {
+    const IntPoint p[6] = {point(), point(), point(), point(), point(), point()};
+    const std::optional<Polygon> tri = make_triangle(p[0], p[1], p[2]);
+    if (!tri) continue;
+    Polygon poly = *tri, neg, pos;
+    const std::optional<Plane> cut = supporting_plane(p[3], p[4], p[5]);
+    if (cut && clip(*tri, *cut, neg, pos) == ClipSide::Both) poly = it % 2 ? neg : pos;
+    const int axis = static_cast<int>(rng() % 3), u = (axis + 1) % 3, v = (axis + 2) % 3;
+    if (poly.support.normal(axis).is_zero()) continue;
+    const std::size_t e = rng() % poly.size();
+    const int s = static_cast<int>(rng() % 53);
+    const double t = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+    const auto at = on_segment(poly.vertices[e], poly.vertices[(e + 1) % poly.size()], u, v, s, t);
+    for (const int du : {-3, -1, 0, 1, 3})
+      for (const int dv : {-3, -1, 0, 1, 3}) {
+        // Offsets of a few 2^-s steps, or far outside (a clear miss).
+        const __int128 scale = (it % 4 == 0) ? (static_cast<__int128>(1) << (s + 20)) : 1;
+        const AxisLine line{axis, DyadicNum(at[0] + du * scale), DyadicNum(at[1] + dv * scale), s};
+        AxisPoint x;
+        ASSERT_TRUE(meet(line, poly.support, x));
+        const bool miss = locate(poly, x) > 0;
+        const bool says_miss = line_clearly_misses(line, poly);
+        if (says_miss) {
+          ASSERT_TRUE(miss) << "the filter claimed a miss the exact test denies";
+        }
+        filtered += says_miss;
+        exact_misses += miss;
+        ++checked;
+      }
+  }
+  // Both outcomes must occur often, or the comparison proves little.
+  EXPECT_GT(checked, 50000);
+  EXPECT_GT(filtered, 5000);
+  EXPECT_GT(exact_misses - filtered, 1000);  // near-edge misses left to the exact test
 }
 
 TEST(AxisLine, ParallelAndInPlaneLines) {

@@ -9,6 +9,7 @@
 // w = n_axis 2^s  (all scaled by the same factor, then signed so w > 0).
 // No 3x3 determinant is needed and every value stays far below 243 bits.
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "ember/geometry/intersect.hpp"
@@ -96,6 +97,37 @@ inline int classify(const AxisPoint& x, const Plane& p) {
 inline std::array<double, 3> approx(const AxisPoint& x) {
   const double w = x.w.to_double();
   return {x.c[0].to_double() / w, x.c[1].to_double() / w, x.c[2].to_double() / w};
+}
+
+/// Floating-point filter for the hit test below: true only when the line
+/// certainly misses the polygon, i.e. its point (U, V) lies strictly outside
+/// an edge of the polygon's projection along the line (valid when the
+/// polygon is not parallel to the line: the projection is then one-to-one
+/// and keeps the convex polygon's orientation, counter-clockwise iff
+/// n_axis > 0). False means "don't know".
+/// Error bound: |coordinates| < 2^26; the cached vertices err by at most 8
+/// ulps (< 2^-23 each), U/2^s and V/2^s are correctly rounded (< 2^-27), so
+/// each difference below errs by < 2^-21 (its own rounding included) and the
+/// orientation o = du dv' - dv du' by < 2^-21 (D + E) + 2^-42 + 2^-51 D E
+/// (D, E the L1 lengths of the two difference vectors, both products and the
+/// subtraction rounding). The margin is twice that, plus 2^-36 because D and
+/// E are themselves computed (each within 2^-19 of the true lengths).
+inline bool line_clearly_misses(const AxisLine& l, const Polygon& poly) {
+  const int na = poly.support.normal(l.axis).sign();
+  if (na == 0) return false;
+  const int u = (l.axis + 1) % 3, v = (l.axis + 2) % 3;
+  const double U = std::ldexp(l.u.to_double(), -l.shift), V = std::ldexp(l.v.to_double(), -l.shift);
+  const std::size_t n = poly.vertices.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::array<double, 3>& a = poly.vertices[i].f;
+    const std::array<double, 3>& b = poly.vertices[i + 1 == n ? 0 : i + 1].f;
+    const double du = b[u] - a[u], dv = b[v] - a[v], eu = U - a[u], ev = V - a[v];
+    const double o = du * ev - dv * eu;
+    const double D = std::fabs(du) + std::fabs(dv), E = std::fabs(eu) + std::fabs(ev);
+    const double margin = 0x1p-20 * (D + E) + 0x1p-36 + 0x1p-50 * D * E;
+    if (na * o < -margin) return true;  // strictly right of a counter-clockwise edge: outside
+  }
+  return false;
 }
 
 /// Segment of the line with classify(r0) <= 0 and classify(r1) <= 0 against a
