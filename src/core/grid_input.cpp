@@ -71,6 +71,7 @@ Quantizer fit_used_vertices(std::span<const Mesh> operands) {
       hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
     }
     void add(const Bounds& b) {
+      if (b.lo.x > b.hi.x) return;  // empty (the identity): its infinities are not points
       add(b.lo);
       add(b.hi);
     }
@@ -98,7 +99,7 @@ Quantizer fit_used_vertices(std::span<const Mesh> operands) {
 namespace {
 
 /// Grid positions of the vertices operand m's faces use (the others stay
-/// unset: they may lie outside the fitted box) and their bounds.
+/// unset: they may lie outside the fitted box).
 struct GridVertices {
   std::vector<IntPoint> pos;
   std::vector<std::uint32_t> used;  ///< the used vertex indices, increasing
