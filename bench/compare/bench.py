@@ -474,8 +474,13 @@ def main() -> int:
     write_summary(outdir / "summary.md", rows, tool_names, args, info, str(len(cases)))
     print((outdir / "summary.md").read_text())
     if args.docs:
-        shutil.copyfile(outdir / "summary.md", args.docs)
-        log(f"wrote {args.docs}")
+        plot = Path(args.docs).with_name("benchmark-time-vs-size.png")
+        Path(args.docs).write_text((outdir / "summary.md").read_text().replace(
+            "Per-case numbers: results.csv; plot: time_vs_size.png.",
+            f"Per-case numbers: results.csv of the run ({outdir}); plot: {plot.name}."))
+        if (outdir / "time_vs_size.png").exists():
+            shutil.copyfile(outdir / "time_vs_size.png", plot)
+        log(f"wrote {args.docs} and {plot}")
     log(f"done: {outdir / 'results.csv'}, {outdir / 'summary.md'}, {outdir / 'time_vs_size.png'}")
     return 0
 
