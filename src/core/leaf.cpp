@@ -338,7 +338,7 @@ bool trace_onto(const Soup& soup, const SoupPolygon& t, const Dyadic& start, int
   const Plane r1 = side > 0 ? -S : S;
 
   const auto xa = approx(x);
-  AxisSegment seg{line, l0, l1, r0, r1, dir, {}, {}};
+  AxisSegment seg{line, l0, l1, r0, r1, dir, {}, {}, line_point_approx(line)};
   for (int a = 0; a < 3; ++a) {
     seg.lo[a] = std::min(approx_coord(start, a), xa[a]) - 1e-6;
     seg.hi[a] = std::max(approx_coord(start, a), xa[a]) + 1e-6;

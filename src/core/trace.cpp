@@ -56,7 +56,7 @@ bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int 
   const Plane r0 = dir > 0 ? -pa : pa;
   const Plane r1 = dir > 0 ? pb : -pb;
 
-  AxisSegment seg{line, l0, l1, r0, r1, dir, {}, {}};
+  AxisSegment seg{line, l0, l1, r0, r1, dir, {}, {}, line_point_approx(line)};
   for (int i = 0; i < 3; ++i) {
     seg.lo[i] = std::min(approx_coord(a, i), approx_coord(b, i));
     seg.hi[i] = std::max(approx_coord(a, i), approx_coord(b, i));
@@ -67,7 +67,7 @@ bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int 
 }
 
 bool add_crossing(const AxisSegment& s, const SoupPolygon& p, Wnv& w) {
-  if (box_disjoint(p, s.lo, s.hi) || line_clearly_misses(s.line, p.poly)) return true;
+  if (box_disjoint(p, s.lo, s.hi) || line_clearly_misses(s.line, s.uv, p.poly)) return true;
   const SegmentHit h = intersect_segment(s.line, s.r0, s.r1, p.poly);
   switch (h.kind) {
     case LineHit::Miss:

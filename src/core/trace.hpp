@@ -25,6 +25,7 @@ struct AxisSegment {
   Plane l0, l1, r0, r1;
   int dir = 1;
   std::array<double, 3> lo{}, hi{};  ///< conservative bounding box
+  std::array<double, 2> uv{};        ///< line_point_approx(line), for the miss filter
 };
 
 /// Adds polygon p's crossing of the segment to w. False when the segment

@@ -146,7 +146,7 @@ TEST(AxisLine, ClearMissFilterNeverContradictsTheExactTest) {
         AxisPoint x;
         ASSERT_TRUE(meet(line, poly.support, x));
         const bool miss = locate(poly, x) > 0;
-        const bool says_miss = line_clearly_misses(line, poly);
+        const bool says_miss = line_clearly_misses(line, line_point_approx(line), poly);
         if (says_miss) {
           ASSERT_TRUE(miss) << "the filter claimed a miss the exact test denies";
         }

@@ -99,6 +99,11 @@ inline std::array<double, 3> approx(const AxisPoint& x) {
   return {x.c[0].to_double() / w, x.c[1].to_double() / w, x.c[2].to_double() / w};
 }
 
+/// The line's (U, V) / 2^s in double, each correctly rounded.
+inline std::array<double, 2> line_point_approx(const AxisLine& l) {
+  return {std::ldexp(l.u.to_double(), -l.shift), std::ldexp(l.v.to_double(), -l.shift)};
+}
+
 /// Floating-point filter for the hit test below: true only when the line
 /// certainly misses the polygon, i.e. its point (U, V) lies strictly outside
 /// an edge of the polygon's projection along the line (valid when the
@@ -112,11 +117,12 @@ inline std::array<double, 3> approx(const AxisPoint& x) {
 /// (D, E the L1 lengths of the two difference vectors, both products and the
 /// subtraction rounding). The margin is twice that, plus 2^-36 because D and
 /// E are themselves computed (each within 2^-19 of the true lengths).
-inline bool line_clearly_misses(const AxisLine& l, const Polygon& poly) {
+/// `uv` = line_point_approx(l), computed once per line by the caller.
+inline bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const Polygon& poly) {
   const int na = poly.support.normal(l.axis).sign();
   if (na == 0) return false;
   const int u = (l.axis + 1) % 3, v = (l.axis + 2) % 3;
-  const double U = std::ldexp(l.u.to_double(), -l.shift), V = std::ldexp(l.v.to_double(), -l.shift);
+  const double U = uv[0], V = uv[1];
   const std::size_t n = poly.vertices.size();
   for (std::size_t i = 0; i < n; ++i) {
     const std::array<double, 3>& a = poly.vertices[i].f;
