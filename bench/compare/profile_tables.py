@@ -159,7 +159,7 @@ def count_instructions(ember_bench: Path, data: Path, mesh: str, matrix_b: list[
 
 def instructions_section(result: dict | None) -> list[str]:
     if not result:
-        return ["## Instructions per input triangle\n", "not measured (valgrind missing or the run failed)\n"]
+        return ["## Instructions per input triangle\n", "not measured (skipped with --instructions-mesh '', valgrind missing, or the run failed)\n"]
     return ["## Instructions per input triangle (callgrind)\n",
             f"{result['mesh']} (normalized) ∪ its copy rotated 1° about (1, 2, 3), {result['triangles']} input "
             f"triangles, defaults (solid proof on), 1 thread, instructions inside `ember::boolean`: "
