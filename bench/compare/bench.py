@@ -32,6 +32,7 @@ import time
 from pathlib import Path
 
 import profile_tables
+from profile_tables import fmt, gmean
 
 OPS = ["union", "intersection", "difference"]
 REPO = Path(__file__).resolve().parents[2]
@@ -214,23 +215,6 @@ def run_tool(base_cmd: list[str], ops: list[str], args, cwd: Path | None = None)
 
 
 # ---------------------------------------------------------------- output
-def gmean(xs):
-    xs = [x for x in xs if x is not None and x > 0 and math.isfinite(x)]
-    if not xs:
-        return None
-    return math.exp(sum(math.log(x) for x in xs) / len(xs))
-
-
-def fmt(x, digits=3):
-    if x is None or (isinstance(x, float) and not math.isfinite(x)):
-        return "–"
-    if isinstance(x, int):
-        return str(x)
-    if abs(x) >= 1000:
-        return f"{x:.0f}"
-    return f"{x:.{digits}g}"
-
-
 def rel_diff(a, b):
     if a is None or b is None:
         return None

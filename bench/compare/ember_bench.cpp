@@ -115,9 +115,7 @@ std::string phase_medians(std::span<const ember::BooleanStats> runs) {
   const auto median = [&](double ember::BooleanStats::*field) {
     std::vector<double> v;
     for (const ember::BooleanStats& s : runs) v.push_back(s.*field);
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+    return bench::median_of(std::move(v));
   };
   std::string out;
   for (const auto& [name, field] : {std::pair{"setup_ms", &ember::BooleanStats::setup_ms},

@@ -14,15 +14,19 @@ from pathlib import Path
 PHASES = ["setup", "proof", "solve", "output"]
 
 
-def _gmean(xs):
+def gmean(xs):
+    """Geometric mean of the positive finite values, None if there are none."""
     xs = [x for x in xs if x is not None and x > 0 and math.isfinite(x)]
     return math.exp(sum(math.log(x) for x in xs) / len(xs)) if xs else None
 
 
-def _fmt(x, digits=3):
+def fmt(x, digits=3):
+    """Table cell: '–' for missing, integers and values >= 1000 without decimals."""
     if x is None or (isinstance(x, float) and not math.isfinite(x)):
         return "–"
-    if isinstance(x, int) or abs(x) >= 1000:
+    if isinstance(x, int):
+        return str(x)
+    if abs(x) >= 1000:
         return f"{x:.0f}"
     return f"{x:.{digits}g}"
 
@@ -42,8 +46,8 @@ def phase_section(rows: list[dict], tools: list[str]) -> list[str]:
         ok = [r for r in main if r.get(f"{t}_setup_ms") is not None]
         sums = {p: sum(r[f"{t}_{p}_ms"] for r in ok) / 1e3 for p in PHASES}
         total = sum(sums.values())
-        cells = [f"{_fmt(sums[p])} ({sums[p] / total:.0%})" if total else "–" for p in PHASES]
-        L.append(f"| {t} | " + " | ".join(cells) + f" | {_fmt(total)} | {len(ok)} |")
+        cells = [f"{fmt(sums[p])} ({sums[p] / total:.0%})" if total else "–" for p in PHASES]
+        L.append(f"| {t} | " + " | ".join(cells) + f" | {fmt(total)} | {len(ok)} |")
     L.append("")
     return L
 
@@ -67,15 +71,15 @@ def scaling_section(rows: list[dict], tools: list[str], threads: list[int]) -> l
         both = [r for r in rows if r.get(f"{a}_ms") and r.get(f"{b}_ms")]
         if not both:
             continue
-        per_case = _gmean([r[f"{a}_ms"] / r[f"{b}_ms"] for r in both])
+        per_case = gmean([r[f"{a}_ms"] / r[f"{b}_ms"] for r in both])
         big = [r for r in both if r["case"] in largest]
         big_ratio = sum(r[f"{a}_ms"] for r in big) / sum(r[f"{b}_ms"] for r in big) if big else None
         cells = []
         for p in PHASES:
             pa = sum(r.get(f"{a}_{p}_ms") or 0 for r in both)
             pb = sum(r.get(f"{b}_{p}_ms") or 0 for r in both)
-            cells.append(_fmt(pa / pb) if pb > 0 else "–")
-        L.append(f"| {prefix} | {_fmt(per_case)} | {_fmt(big_ratio)} | " + " | ".join(cells) + " |")
+            cells.append(fmt(pa / pb) if pb > 0 else "–")
+        L.append(f"| {prefix} | {fmt(per_case)} | {fmt(big_ratio)} | " + " | ".join(cells) + " |")
     L.append("")
     return L
 
@@ -93,8 +97,8 @@ def cold_section(rows: list[dict], tools: list[str]) -> list[str]:
          "| tool | first run (geomean) | repeated runs (geomean) | first / repeated |", "|---|---|---|---|"]
     for t in with_cold:
         ok = [r for r in main if r.get(f"{t}_cold_ms") and r.get(f"{t}_ms")]
-        c, w = _gmean([r[f"{t}_cold_ms"] for r in ok]), _gmean([r[f"{t}_ms"] for r in ok])
-        L.append(f"| {t} | {_fmt(c)} ms | {_fmt(w)} ms | {_fmt(c / w if c and w else None)} |")
+        c, w = gmean([r[f"{t}_cold_ms"] for r in ok]), gmean([r[f"{t}_ms"] for r in ok])
+        L.append(f"| {t} | {fmt(c)} ms | {fmt(w)} ms | {fmt(c / w if c and w else None)} |")
     L.append("")
     return L
 
@@ -119,7 +123,7 @@ def memory_section(rows: list[dict], tools: list[str]) -> list[str]:
         med = per[len(per) // 2] if per else None
         b = big.get(f"{t}_rss_mib")
         bb = b * 2**20 / big["in_triangles"] if b and math.isfinite(b) and big.get(f"{t}_ms") else None
-        L.append(f"| {t} | {_fmt(med)} | {_fmt(bb)} |")
+        L.append(f"| {t} | {fmt(med)} | {fmt(bb)} |")
     L.append("")
     return L
 
@@ -182,7 +186,7 @@ def per_case_section(rows: list[dict], tools: list[str]) -> list[str]:
         if not r.get("in_triangles"):
             continue
         L.append(f"| {r['case']} | {r['op']} | {r['in_triangles']} | " +
-                 " | ".join(_fmt(r.get(f"{t}_ms")) for t in [e] + peers) + " | " +
-                 " | ".join(_fmt(r.get(f"ratio_{e}_vs_{p}")) for p in peers) + " |")
+                 " | ".join(fmt(r.get(f"{t}_ms")) for t in [e] + peers) + " | " +
+                 " | ".join(fmt(r.get(f"ratio_{e}_vs_{p}")) for p in peers) + " |")
     L.append("")
     return L

@@ -72,6 +72,13 @@ inline RunnerArgs parse_runner_args(int argc, char** argv, int first) {
   return r;
 }
 
+/// The median (mean of the middle two for an even count); 0 for none.
+inline double median_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
 /// What one timed Boolean produced (filled by the tool's run function).
 struct OpOutput {
   bool ok = true;
@@ -124,13 +131,7 @@ inline void time_op(const char* tool, const RunnerArgs& args, const std::string&
       out.error = std::string("exception while reading result: ") + e.what();
     }
   }
-  std::vector<double> sorted = times;
-  std::sort(sorted.begin(), sorted.end());
-  double median = 0;
-  if (!sorted.empty()) {
-    std::size_t n = sorted.size();
-    median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
-  }
+  const double median = median_of(times);
   std::string ts;
   for (double t : times) {
     if (!ts.empty()) ts += ',';

@@ -47,10 +47,7 @@ int rounding_change(const Mesh& m, const GridTriangle& t) {
   const Vec3d& c = m.vertices[t.v[2]];
   const std::array<ld, 3> n = cross(a, b, c);
   if (!has_area(n, a, b, c)) return -1;
-  // Grid corners differ by < 2^26 per axis: the normal is exact in int64.
-  const std::int64_t ux = t.p[1].x - t.p[0].x, uy = t.p[1].y - t.p[0].y, uz = t.p[1].z - t.p[0].z;
-  const std::int64_t vx = t.p[2].x - t.p[0].x, vy = t.p[2].y - t.p[0].y, vz = t.p[2].z - t.p[0].z;
-  const std::int64_t g[3] = {uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
+  const std::array<std::int64_t, 3> g = grid_normal(t.p[0], t.p[1], t.p[2]);
   if (g[0] == 0 && g[1] == 0 && g[2] == 0) return 1;
   return n[0] * g[0] + n[1] * g[1] + n[2] * g[2] < 0 ? 2 : 0;
 }

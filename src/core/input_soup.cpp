@@ -90,16 +90,13 @@ std::vector<std::size_t> count_open_edges(const GridInput& gi) {
 
 InputSoup build_soup(const GridInput& gi, bool keep_grid) {
   const std::size_t n = gi.triangles.size();
-  // Pass 1: which triangles have area. |corner differences| < 2^26, so the
-  // cross product's terms are < 2^52 and its components exact in int64
-  // (make_triangle decides the same, exactly).
+  // Pass 1: which triangles have area (the exact grid normal is non-zero;
+  // make_triangle decides the same).
   std::vector<std::uint32_t> id(n + 1, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const auto& p = gi.triangles[i].p;
-      const std::int64_t ux = p[1].x - p[0].x, uy = p[1].y - p[0].y, uz = p[1].z - p[0].z;
-      const std::int64_t vx = p[2].x - p[0].x, vy = p[2].y - p[0].y, vz = p[2].z - p[0].z;
-      id[i + 1] = (uy * vz - uz * vy) != 0 || (uz * vx - ux * vz) != 0 || (ux * vy - uy * vx) != 0;
+      id[i + 1] = grid_normal(p[0], p[1], p[2]) != std::array<std::int64_t, 3>{0, 0, 0};
     }
   });
   // Ids in input order over the kept triangles: an exclusive prefix sum.

@@ -52,9 +52,7 @@ struct Projection {
 
 /// The axis along which the triangle's plane projects without collapsing.
 int dominant_axis(const std::array<IntPoint, 3>& t) {
-  const std::int64_t ux = t[1].x - t[0].x, uy = t[1].y - t[0].y, uz = t[1].z - t[0].z;
-  const std::int64_t vx = t[2].x - t[0].x, vy = t[2].y - t[0].y, vz = t[2].z - t[0].z;
-  const std::int64_t n[3] = {uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
+  const std::array<std::int64_t, 3> n = grid_normal(t[0], t[1], t[2]);
   const std::int64_t a[3] = {n[0] < 0 ? -n[0] : n[0], n[1] < 0 ? -n[1] : n[1], n[2] < 0 ? -n[2] : n[2]};
   if (a[0] >= a[1] && a[0] >= a[2]) return 0;
   return a[1] >= a[2] ? 1 : 2;

@@ -1,6 +1,6 @@
 #pragma once
-// Vertex ids for grid triangles: equal positions get equal ids (first
-// occurrence order), for edge matching (closedness, manifold components).
+// Edge matching on welded vertex ids (closedness, manifold components). The
+// ids come from the set-up's weld of the grid vertices (grid_input.hpp).
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -15,8 +15,6 @@ struct WeldedTriangles {
   std::vector<std::array<std::uint32_t, 3>> ids;  ///< per triangle, its corners' vertex ids
   std::size_t vertex_count = 0;
 };
-
-WeldedTriangles weld(std::span<const std::array<IntPoint, 3>> triangles);
 
 /// One use of an undirected edge {lo, hi} by a triangle's directed edge.
 struct EdgeUse {

@@ -40,6 +40,28 @@ TEST(GeometryPlane, SupportingPlaneMatchesOracleWithinBounds) {
   EXPECT_GE(max_n, 52);  // the corner triangles reach the bound
 }
 
+TEST(GeometryPlane, GridNormalMatchesOracleAtFullRange) {
+  Gen g(7);
+  std::vector<std::array<IntPoint, 3>> tris = {
+      {IntPoint{-L, -L, -L}, IntPoint{L, -L, L}, IntPoint{-L, L, L}},  // components reach 2^52
+      {IntPoint{L, L, L}, IntPoint{-L, L, -L}, IntPoint{L, -L, -L}},
+      {IntPoint{-L, 0, L}, IntPoint{0, 0, 0}, IntPoint{L, 0, -L}},   // collinear
+  };
+  for (int i = 0; i < 20000; ++i) tris.push_back({g.point(), g.point(), g.point()});
+  int max_bits = 0, zero = 0;
+  for (const auto& t : tris) {
+    const std::array<std::int64_t, 3> n = grid_normal(t[0], t[1], t[2]);
+    const MpPlane o = oracle_support(t[0], t[1], t[2]);
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_EQ(mpz64(n[k]), o[k]);
+      max_bits = std::max(max_bits, bits_of(o[k]));
+    }
+    zero += n == std::array<std::int64_t, 3>{0, 0, 0};
+  }
+  EXPECT_GE(max_bits, 52);  // the corner triangles exercise the bound
+  EXPECT_GE(zero, 1);
+}
+
 TEST(GeometryPlane, SupportingPlaneNormalIsCounterClockwise) {
   const auto p = supporting_plane({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
   ASSERT_TRUE(p);

@@ -4,6 +4,7 @@
 // positive side is where the expression is > 0. Kinds: S (supporting plane of
 // a triangle), E (edge plane, parallel to the dominant axis of the support) and
 // A (axis-aligned at an integer position). Bounds: see bounds.hpp.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -71,6 +72,18 @@ inline std::optional<Plane> supporting_plane(const IntPoint& p0, const IntPoint&
   // 53+26 = 79 per product, 81 after the sum; |n.p0| <= 3*2^52*2^25 < 2^79.
   const auto d = OffsetCoef::assume_bound(-(nx * Coord(p0.x) + ny * Coord(p0.y) + nz * Coord(p0.z)));
   return Plane{nx, ny, nz, d};
+}
+
+/// (p1 - p0) x (p2 - p0) in plain int64, for grid points (|x| <= kCoordLimit,
+/// not checked): corner differences are at most 2^26, so each product is at
+/// most 2^52 and each component below 2^53. Zero iff the points are collinear;
+/// the same vector as supporting_plane's normal.
+inline std::array<std::int64_t, 3> grid_normal(const IntPoint& p0, const IntPoint& p1, const IntPoint& p2) {
+  static_assert(kCoordLimit <= (std::int64_t{1} << 25) && 2 * 26 + 1 < 63,
+                "grid normal: differences <= 2^26, products <= 2^52, components < 2^53 fit int64");
+  const std::int64_t ux = p1.x - p0.x, uy = p1.y - p0.y, uz = p1.z - p0.z;
+  const std::int64_t vx = p2.x - p0.x, vy = p2.y - p0.y, vz = p2.z - p0.z;
+  return {uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
 }
 
 /// Axis (0, 1, 2) of the largest |normal component|; ties go to the lowest index.

@@ -107,7 +107,6 @@ class VertexIndex {
   }
 
  private:
-  static double coord(const Vec3d& p, int a) { return a == 0 ? p.x : (a == 1 ? p.y : p.z); }
   /// Monotone in each coordinate (floating subtraction and division by a
   /// positive constant are monotone), so a box's cells bracket its points'.
   std::array<std::int64_t, 3> cell_of(const Vec3d& p) const {
