@@ -38,10 +38,13 @@ IntBox box_of(const std::array<IntPoint, 3>& t) {
 /// overlap (cells are half-open), so each overlapping pair is tested once.
 class ContactSearch {
  public:
-  ContactSearch(std::span<const std::array<IntPoint, 3>> corners, std::vector<std::uint32_t> members)
-      : corners_(corners), members_(std::move(members)) {
-    boxes_.reserve(members_.size());
-    for (const std::uint32_t m : members_) boxes_.push_back(box_of(corners_[m]));
+  ContactSearch(const GridTriangles& grid, const std::vector<std::uint32_t>& members) {
+    tris_.reserve(members.size());
+    boxes_.reserve(members.size());
+    for (const std::uint32_t m : members) {
+      tris_.push_back(contact_triangle(grid.corners[m], grid.vertex_ids[m]));
+      boxes_.push_back(box_of(grid.corners[m]));
+    }
   }
 
   enum class Outcome { None, Found, GaveUp };
@@ -49,7 +52,7 @@ class ContactSearch {
   /// Searches until the pairs found reach max_pairs (1: stop at the first).
   Outcome run(std::size_t max_pairs) {
     max_pairs_ = max_pairs;
-    std::vector<std::uint32_t> all(members_.size());
+    std::vector<std::uint32_t> all(tris_.size());
     std::iota(all.begin(), all.end(), 0u);
     IntBox cell{{-2 * kCoordLimit, -2 * kCoordLimit, -2 * kCoordLimit}, {2 * kCoordLimit, 2 * kCoordLimit, 2 * kCoordLimit}};
     search(std::move(all), cell, 0);
@@ -58,7 +61,7 @@ class ContactSearch {
   std::size_t pairs_found() const { return std::min(found_.load(), max_pairs_); }
 
  private:
-  static constexpr std::size_t kLeaf = 48;
+  static constexpr std::size_t kLeaf = 96;
   static constexpr int kMaxDepth = 64;
   /// A cell whose triangles mostly straddle every split (long slivers all
   /// crossing one region) stops splitting; past this size its all-pairs test
@@ -103,29 +106,32 @@ class ContactSearch {
     }
   }
 
-  /// All overlapping pairs owned by this cell, by a sweep along x.
+  /// All overlapping pairs owned by this cell, by a sweep along x over a
+  /// local copy of the boxes (contiguous, sorted by lo.x).
   void test_pairs(std::vector<std::uint32_t>& items, const IntBox& cell) {
     std::sort(items.begin(), items.end(),
               [&](std::uint32_t x, std::uint32_t y) { return boxes_[x].lo[0] < boxes_[y].lo[0]; });
+    std::vector<IntBox> boxes(items.size());
+    for (std::size_t i = 0; i < items.size(); ++i) boxes[i] = boxes_[items[i]];
     for (std::size_t x = 0; x < items.size(); ++x) {
-      const IntBox& bi = boxes_[items[x]];
+      const IntBox& bi = boxes[x];
       for (std::size_t y = x + 1; y < items.size(); ++y) {
-        const IntBox& bj = boxes_[items[y]];
+        const IntBox& bj = boxes[y];
         if (bj.lo[0] > bi.hi[0]) break;  // sorted by lo.x: no later box overlaps bi in x
-        bool test = true;
-        for (int a = 0; a < 3 && test; ++a) {
+        if (bj.lo[1] > bi.hi[1] || bi.lo[1] > bj.hi[1] || bj.lo[2] > bi.hi[2] || bi.lo[2] > bj.hi[2]) continue;
+        bool owned = true;  // the overlap's low corner lies in this (half-open) cell
+        for (int a = 0; a < 3 && owned; ++a) {
           const std::int64_t owner = std::max(bi.lo[a], bj.lo[a]);
-          test = owner <= std::min(bi.hi[a], bj.hi[a]) && owner >= cell.lo[a] && owner < cell.hi[a];
+          owned = owner >= cell.lo[a] && owner < cell.hi[a];
         }
-        if (test && triangles_meet_improperly(corners_[members_[items[x]]], corners_[members_[items[y]]]) &&
+        if (owned && triangles_meet_improperly(tris_[items[x]], tris_[items[y]]) &&
             found_.fetch_add(1) + 1 >= max_pairs_)
           return;
       }
     }
   }
 
-  std::span<const std::array<IntPoint, 3>> corners_;
-  std::vector<std::uint32_t> members_;
+  std::vector<ContactTriangle> tris_;  ///< the members', in member order
   std::vector<IntBox> boxes_;
   std::size_t max_pairs_ = 1;
   std::atomic<std::size_t> found_{0};
@@ -181,7 +187,7 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
   if (members.empty()) return {};
   // Counting the contacts (not just finding one) costs at most one full
   // search, the price of proving a solid operand; the count tells the user why.
-  ContactSearch search(grid.corners, members);
+  ContactSearch search(grid, members);
   switch (search.run(OperandReport::kMaxReportedPairs)) {
     case ContactSearch::Outcome::Found:
       return {SolidVerdict::SelfIntersecting, search.pairs_found(), 0};

@@ -48,9 +48,22 @@ struct SolidFinding {
 /// outside everything).
 SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand);
 
-/// Step 1 alone, for one pair (exposed for tests): true if the two
-/// non-degenerate triangles meet anywhere except in shared vertices or a
-/// shared edge (vertices are shared when their positions are equal).
+/// A grid triangle prepared for the contact test: its corners, their welded
+/// ids (equal iff equal positions, within the triangles compared) and its
+/// normal (p1 - p0) x (p2 - p0) (grid_normal), computed once per triangle
+/// instead of once per pair.
+struct ContactTriangle {
+  std::array<IntPoint, 3> p;
+  std::array<std::int64_t, 3> n;
+  std::array<std::uint32_t, 3> id;
+};
+ContactTriangle contact_triangle(const std::array<IntPoint, 3>& p, const std::array<std::uint32_t, 3>& ids);
+
+/// Step 1 alone, for one pair: true if the two non-degenerate triangles meet
+/// anywhere except in shared vertices or a shared edge.
+bool triangles_meet_improperly(const ContactTriangle& a, const ContactTriangle& b);
+/// The same for bare triangles (vertices are shared when their positions are
+/// equal); for tests.
 bool triangles_meet_improperly(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b);
 
 }  // namespace ember::core

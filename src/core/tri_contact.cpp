@@ -32,6 +32,14 @@ i128 orient3d(const IntPoint& a, const IntPoint& b, const IntPoint& c, const Int
   return bx * m0 + by * m1 + bz * m2;
 }
 
+/// orient3d(t[0], t[1], t[2], p) = n . (p - t[0]) with the stored normal n:
+/// the same value (n has components < 2^53, differences < 2^27, so each
+/// product < 2^80 and the sum < 2^82) for three multiplications instead of nine.
+i128 side(const ContactTriangle& t, const IntPoint& p) {
+  return i128(t.n[0]) * (p.x - t.p[0].x) + i128(t.n[1]) * (p.y - t.p[0].y) + i128(t.n[2]) * (p.z - t.p[0].z);
+}
+static_assert(53 + (kDiffBits + 1) + 2 <= 126, "side: normal < 2^53 times difference < 2^27, three terms < 2^82");
+
 /// A 2D view of a plane: coordinates (u, v) after dropping axis `drop`.
 struct Projection {
   int u, v;
@@ -50,9 +58,8 @@ struct Projection {
   }
 };
 
-/// The axis along which the triangle's plane projects without collapsing.
-int dominant_axis(const std::array<IntPoint, 3>& t) {
-  const std::array<std::int64_t, 3> n = grid_normal(t[0], t[1], t[2]);
+/// The axis along which a plane with normal n projects without collapsing.
+int dominant_axis(const std::array<std::int64_t, 3>& n) {
   const std::int64_t a[3] = {n[0] < 0 ? -n[0] : n[0], n[1] < 0 ? -n[1] : n[1], n[2] < 0 ? -n[2] : n[2]};
   if (a[0] >= a[1] && a[0] >= a[2]) return 0;
   return a[1] >= a[2] ? 1 : 2;
@@ -76,8 +83,7 @@ bool contains(const Projection& pr, const std::array<IntPoint, 3>& t, const IntP
 
 /// Closed coplanar triangles meet unless an edge line of one has the other
 /// strictly on its outer side (separating axis theorem for convex polygons).
-bool coplanar_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b) {
-  const Projection pr(dominant_axis(a));
+bool coplanar_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b, const Projection& pr) {
   const auto separated_by_edge_of = [&](const std::array<IntPoint, 3>& s, const std::array<IntPoint, 3>& o) {
     const int orientation = sign(pr.orient(s[0], s[1], s[2]));
     for (int i = 0; i < 3; ++i) {
@@ -91,11 +97,12 @@ bool coplanar_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 
 }
 
 /// Closed segment pq meets closed triangle t (t non-degenerate).
-bool segment_meets_triangle(const IntPoint& p, const IntPoint& q, const std::array<IntPoint, 3>& t) {
-  const int sp = sign(orient3d(t[0], t[1], t[2], p)), sq = sign(orient3d(t[0], t[1], t[2], q));
+bool segment_meets_triangle(const IntPoint& p, const IntPoint& q, const ContactTriangle& tri) {
+  const std::array<IntPoint, 3>& t = tri.p;
+  const int sp = sign(side(tri, p)), sq = sign(side(tri, q));
   if (sp * sq > 0) return false;
   if (sp == 0 && sq == 0) {  // in t's plane
-    const Projection pr(dominant_axis(t));
+    const Projection pr(dominant_axis(tri.n));
     if (contains(pr, t, p) || contains(pr, t, q)) return true;
     for (int i = 0; i < 3; ++i)
       if (segments_meet(pr, p, q, t[i], t[(i + 1) % 3])) return true;
@@ -143,27 +150,42 @@ bool wedges_meet(const IntPoint& v, const IntPoint& a1, const IntPoint& a2, cons
 
 }  // namespace
 
+ContactTriangle contact_triangle(const std::array<IntPoint, 3>& p, const std::array<std::uint32_t, 3>& ids) {
+  return {p, grid_normal(p[0], p[1], p[2]), ids};
+}
+
 bool triangles_meet_improperly(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b) {
+  // Ids equal iff positions equal: a's corners 0..2, b's corner j the id of an
+  // equal corner of a, else 3 + j.
+  std::array<std::uint32_t, 3> ib{3, 4, 5};
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      if (b[j] == a[i]) ib[j] = static_cast<std::uint32_t>(i);
+  return triangles_meet_improperly(contact_triangle(a, {0, 1, 2}), contact_triangle(b, ib));
+}
+
+bool triangles_meet_improperly(const ContactTriangle& ta, const ContactTriangle& tb) {
+  const std::array<IntPoint, 3>&a = ta.p, &b = tb.p;
   int shared = 0, ia = -1, ib = -1;  // a[ia] == b[ib] when exactly one vertex is shared
   bool a_shared[3] = {false, false, false}, b_shared[3] = {false, false, false};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      if (a[i] == b[j]) {
+      if (ta.id[i] == tb.id[j]) {
         ++shared;
         a_shared[i] = b_shared[j] = true;
         ia = i;
         ib = j;
       }
   if (shared >= 3) return true;  // the same triangle twice (either orientation)
-  const auto side_of_b = [&](const IntPoint& p) { return orient3d(b[0], b[1], b[2], p); };
-  const auto side_of_a = [&](const IntPoint& p) { return orient3d(a[0], a[1], a[2], p); };
+  const auto side_of_b = [&](const IntPoint& p) { return side(tb, p); };
+  const auto side_of_a = [&](const IntPoint& p) { return side(ta, p); };
   if (shared == 2) {
     int i = 0, j = 0;
     while (a_shared[i]) ++i;
     while (b_shared[j]) ++j;
     if (side_of_a(b[j]) != 0) return false;  // not coplanar: they meet exactly along the shared edge
     const int e0 = (i + 1) % 3, e1 = (i + 2) % 3;  // the shared edge, as in a
-    const Projection pr(dominant_axis(a));
+    const Projection pr(dominant_axis(ta.n));
     return sign(pr.orient(a[e0], a[e1], a[i])) == sign(pr.orient(a[e0], a[e1], b[j]));
   }
   if (shared == 1) {
@@ -172,7 +194,7 @@ bool triangles_meet_improperly(const std::array<IntPoint, 3>& a, const std::arra
     const IntPoint &b1 = b[(ib + 1) % 3], &b2 = b[(ib + 2) % 3];
     const i128 s1 = side_of_b(a1), s2 = side_of_b(a2);
     if ((s1 > 0 && s2 > 0) || (s1 < 0 && s2 < 0)) return false;  // a meets b's plane only at v
-    if (s1 == 0 && s2 == 0) return wedges_meet(v, a1, a2, b1, b2, Projection(dominant_axis(a)));  // coplanar
+    if (s1 == 0 && s2 == 0) return wedges_meet(v, a1, a2, b1, b2, Projection(dominant_axis(ta.n)));  // coplanar
     // Both meet the other's plane in segments from v along the planes' common line.
     std::array<i128, 3> da{}, db{};
     chord_direction(v, a1, a2, s1, s2, da);
@@ -187,12 +209,12 @@ bool triangles_meet_improperly(const std::array<IntPoint, 3>& a, const std::arra
   };
   const i128 sa[3] = {side_of_b(a[0]), side_of_b(a[1]), side_of_b(a[2])};
   if (one_side(sa)) return false;
-  if (sa[0] == 0 && sa[1] == 0 && sa[2] == 0) return coplanar_meet(a, b);
+  if (sa[0] == 0 && sa[1] == 0 && sa[2] == 0) return coplanar_meet(a, b, Projection(dominant_axis(ta.n)));
   const i128 sb[3] = {side_of_a(b[0]), side_of_a(b[1]), side_of_a(b[2])};
   if (one_side(sb)) return false;
   // Non-coplanar: an end of the common segment lies on an edge of a or of b.
   for (int i = 0; i < 3; ++i)
-    if (segment_meets_triangle(a[i], a[(i + 1) % 3], b) || segment_meets_triangle(b[i], b[(i + 1) % 3], a))
+    if (segment_meets_triangle(a[i], a[(i + 1) % 3], tb) || segment_meets_triangle(b[i], b[(i + 1) % 3], ta))
       return true;
   return false;
 }

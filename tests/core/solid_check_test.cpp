@@ -119,15 +119,19 @@ bool oracle_meet(const Tri& a, const Tri& b) {
   return false;
 }
 
-TEST(TriangleContact, RandomSmallGridTrianglesMatchRationalOracle) {
-  // On a 4x4x4 grid, degeneracies (shared vertices and edges, coplanarity,
-  // touching) are frequent. meet() also checks argument and vertex symmetries.
+/// Random triangles on a 4x4x4 lattice whose points are origin + c * step
+/// (c in 0..3 per axis), checked against the rational oracle. On so few
+/// points degeneracies (shared vertices and edges, coplanarity, touching) are
+/// frequent. meet() also checks argument and vertex symmetries.
+void expect_random_lattice_pairs_match_oracle(std::int64_t origin, std::int64_t step) {
   std::mt19937 rng(42);
   std::uniform_int_distribution<int> c(0, 3);
-  const auto random_point = [&] { return IntPoint{c(rng), c(rng), c(rng)}; };
+  const auto random_point = [&] {
+    return IntPoint{origin + c(rng) * step, origin + c(rng) * step, origin + c(rng) * step};
+  };
   const auto degenerate = [](const Tri& t) {
-    const std::int64_t ux = t[1].x - t[0].x, uy = t[1].y - t[0].y, uz = t[1].z - t[0].z;
-    const std::int64_t vx = t[2].x - t[0].x, vy = t[2].y - t[0].y, vz = t[2].z - t[0].z;
+    const mpz_class ux = t[1].x - t[0].x, uy = t[1].y - t[0].y, uz = t[1].z - t[0].z;
+    const mpz_class vx = t[2].x - t[0].x, vy = t[2].y - t[0].y, vz = t[2].z - t[0].z;
     return uy * vz - uz * vy == 0 && uz * vx - ux * vz == 0 && ux * vy - uy * vx == 0;
   };
   int tested = 0, met = 0, shared_vertex = 0, mismatches = 0;
@@ -146,6 +150,17 @@ TEST(TriangleContact, RandomSmallGridTrianglesMatchRationalOracle) {
   EXPECT_GT(met, 1000);
   EXPECT_LT(met, tested - 1000);
   EXPECT_GT(shared_vertex, 3000);
+}
+
+TEST(TriangleContact, RandomSmallGridTrianglesMatchRationalOracle) { expect_random_lattice_pairs_match_oracle(0, 1); }
+
+TEST(TriangleContact, RandomFullRangeTrianglesMatchRationalOracle) {
+  // The same lattice stretched over the whole grid, -2^25 .. 2^25 - 1: corner
+  // differences near 2^26 and normal components near 2^53, the limits of the
+  // int64 normal and the 128-bit side test (tri_contact.cpp's bit budget).
+  constexpr std::int64_t lo = -kCoordLimit, step = (2 * kCoordLimit - 1) / 3;
+  static_assert(lo + 3 * step <= kCoordLimit && step > (std::int64_t{1} << 24));
+  expect_random_lattice_pairs_match_oracle(lo, step);
 }
 
 /// The Boolean's verdict through its statistics.
