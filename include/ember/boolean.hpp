@@ -115,6 +115,9 @@ struct BooleanStats {
   std::size_t output_polygons = 0;
   std::size_t dropped_slivers = 0;  ///< exact output slivers whose rounded vertices have zero area
   std::size_t solid_operands = 0;  ///< operands treated as solid (promised or proven)
+  /// Input triangles the subdivision had cut into pieces that all reached the
+  /// output uncut, passed on whole instead of as pieces.
+  std::size_t merged_triangles = 0;
   std::size_t output_vertices = 0;
   /// Mesh stage (Output::Triangles): vertices inserted into edges they lay
   /// on, boundary vertices removed as merely collinear, merged regions, and

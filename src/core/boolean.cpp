@@ -22,6 +22,7 @@
 #include "core/mesh/mesh_output.hpp"
 #include "core/solve.hpp"
 #include "core/solid_check.hpp"
+#include "core/whole_triangles.hpp"
 #include "ember/core/quantize.hpp"
 #include "ember/error.hpp"
 
@@ -211,14 +212,18 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
           report(options, "solid check", 0.1 + 0.1 * static_cast<double>(o) / static_cast<double>(operands.size()));
           arena.execute([&] { ctx.solid[o] = prove_solid(root, grid, o, result); });
         }
-      grid = {};
+      grid.vertex_ids = {};
     }
     for (const char s : ctx.solid) result.stats.solid_operands += s != 0;
     proved = std::chrono::steady_clock::now();
     result.stats.proof_ms = ms_between(setup_done, proved);
     report(options, "solve", 0.2);
-    arena.execute([&] { polys = core::solve(std::move(root), ctx); });
+    arena.execute([&] {
+      polys = core::solve(std::move(root), ctx);
+      result.stats.merged_triangles = core::merge_whole_triangles(polys, grid.corners);
+    });
   }
+  grid = {};
   const auto solved = std::chrono::steady_clock::now();
   result.stats.solve_ms = ms_between(proved, solved);
   report(options, "export", 0.9);

@@ -117,10 +117,8 @@ InputSoup build_soup(const GridInput& gi, bool keep_grid) {
   in.dropped_degenerate = n - kept;
   in.soup.resize(kept);
   in.sources.resize(kept);
-  if (keep_grid) {
-    in.grid.corners.resize(kept);
-    in.grid.vertex_ids.resize(kept);
-  }
+  in.grid.corners.resize(kept);
+  if (keep_grid) in.grid.vertex_ids.resize(kept);
   // Pass 2: triangle i (kept when id[i + 1] > id[i]) becomes polygon id[i].
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
@@ -133,10 +131,8 @@ InputSoup build_soup(const GridInput& gi, bool keep_grid) {
       p.operand = t.operand;
       update_bounds(p);
       in.sources[k] = {t.operand, t.face};
-      if (keep_grid) {
-        in.grid.corners[k] = t.p;
-        in.grid.vertex_ids[k] = gi.vertex_ids[i];
-      }
+      in.grid.corners[k] = t.p;
+      if (keep_grid) in.grid.vertex_ids[k] = gi.vertex_ids[i];
     }
   });
   return in;

@@ -23,8 +23,9 @@ void validate_operands(std::span<const Mesh> operands);
 std::vector<std::size_t> count_open_edges(const GridInput& gi);
 
 /// The non-degenerate grid triangles as the root soup: ids in input order
-/// (the total order of coplanar overlaps), sources[id] their origin, and,
-/// when `keep_grid`, grid.corners / grid.vertex_ids by id for the solid proof.
+/// (the total order of coplanar overlaps), sources[id] their origin,
+/// grid.corners by id (for the solid proof and merge_whole_triangles) and,
+/// when `keep_grid`, grid.vertex_ids by id for the solid proof.
 struct InputSoup {
   Soup soup;
   std::vector<Provenance> sources;

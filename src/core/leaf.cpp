@@ -241,7 +241,8 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
 /// covered by their first few lower-id neighbours.
 /// `parallel` holds t's class of parallel polygons (soup indices, ascending)
 /// and `at` t's position in it: only those can be coplanar with t.
-void disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx,
+/// Returns true if no such polygon overlapped t (then pieces = {t}).
+bool disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx,
                      std::span<const std::uint32_t> parallel, std::size_t at, LeafScratch& sc,
                      std::vector<Piece>& pieces) {
   pieces.resize(1);
@@ -253,7 +254,7 @@ void disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext&
   // What is left of t shrinks as it is cut: polygons outside the box of the
   // remaining pieces are skipped without a plane test.
   std::array<double, 3> lo = t.lo, hi = t.hi;
-  bool cut = false;
+  bool cut = false, untouched = true;
   for (std::size_t k = parallel.size(); k-- > 0;) {
     if (k == at) continue;
     const SoupPolygon& o = soup[parallel[k]];
@@ -276,8 +277,9 @@ void disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext&
       cut = true;
     }
     std::swap(pieces, next);
-    if (pieces.empty()) return;
+    if (pieces.empty()) return false;
     if (cut) {
+      untouched = false;
       constexpr double kMargin = 1.0 / 65536;  // as update_bounds: covers the approximation error
       lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
       hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
@@ -289,6 +291,7 @@ void disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext&
           }
     }
   }
+  return untouched;
 }
 
 /// Refines `pieces` (enabled pieces of t, already outside every lower-id
@@ -552,15 +555,16 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
       throw Error("ember: could not classify a polygon piece (no non-degenerate trace path found); "
                   "this input is too degenerate for the current implementation");
   };
-  const auto emit = [&](const SoupPolygon& t, const Polygon& f, bool in_front, bool in_back) {
+  // `whole`: f is all of t (t's subdivision piece), uncut and untrimmed.
+  const auto emit = [&](const SoupPolygon& t, const Polygon& f, bool in_front, bool in_back, bool whole) {
     if (in_front == in_back) return;
-    out.push_back({f, t.id, t.operand, in_front});
+    out.push_back({f, t.id, t.operand, in_front, whole, t.splits});
   };
   for (const SoupPolygon& t : pb.soup) {
     const std::size_t ti = static_cast<std::size_t>(&t - pb.soup.data());
-    disable_covered(pb.soup, t, ctx,
-                    std::span<const std::uint32_t>(order.data() + class_begin[ti], class_end[ti] - class_begin[ti]),
-                    position[ti], scratch, pieces);
+    const bool uncovered = disable_covered(
+        pb.soup, t, ctx, std::span<const std::uint32_t>(order.data() + class_begin[ti], class_end[ti] - class_begin[ti]),
+        position[ti], scratch, pieces);
     if (pieces.empty()) continue;
     gather(pb.soup, t, ctx, class_begin, scratch);
     const bool face = on_box_face(t, pb.box);
@@ -584,7 +588,7 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
         const int vf = side_value(ctx, w_front, scratch.free_front, scratch.stamp, scratch.n_front);
         const int vb = side_value(ctx, w_back, scratch.free_back, scratch.stamp, scratch.n_back);
         if (vf >= 0 && vb >= 0) {
-          emit(t, pieces[n].poly, vf != 0, vb != 0);
+          emit(t, pieces[n].poly, vf != 0, vb != 0, uncovered);
           continue;
         }
       }
@@ -595,7 +599,7 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
       for (std::size_t m = 0; m < sub.size(); ++m) {
         // Uncut: the trace made for the early termination still holds.
         if (!(traced && sub.size() == 1)) classify_or_throw(t, sub[m].poly, seed + m);
-        emit(t, sub[m].poly, ctx.inside(w_front), ctx.inside(w_back));
+        emit(t, sub[m].poly, ctx.inside(w_front), ctx.inside(w_back), uncovered && sub.size() == 1);
       }
     }
   }

@@ -17,6 +17,11 @@ struct OutputPolygon {
   std::uint32_t id = 0;       ///< source polygon (input triangle) id
   std::uint32_t operand = 0;
   bool flip = false;          ///< emit with reversed orientation (in-out transition)
+  /// The polygon is the whole subdivision piece its source triangle had in
+  /// the box that emitted it (no leaf cut or trimmed it), and that piece was
+  /// made by `splits` subdivision splits (SoupPolygon::splits).
+  bool whole_piece = false;
+  std::uint8_t splits = 0;
 };
 
 struct SolveContext {

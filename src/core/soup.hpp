@@ -17,6 +17,10 @@ struct SoupPolygon {
   std::uint32_t id = 0;       ///< input triangle index, unique
   std::uint32_t operand = 0;  ///< which operand's surface this is
   std::array<double, 3> lo{}, hi{};  ///< conservative bounding box (grid units)
+  /// How many subdivision splits made this piece of its input triangle (255:
+  /// that many or more). The pieces of one triangle are the leaves of a binary
+  /// tree of splits, so their shares 2^-splits sum to exactly 1.
+  std::uint8_t splits = 0;
 };
 using Soup = std::vector<SoupPolygon>;
 

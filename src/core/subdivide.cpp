@@ -189,8 +189,9 @@ void split_range(Soup& soup, std::size_t begin, std::size_t end, int axis, std::
       case ClipSide::Both: {
         // The parts take over the clip buffers; the old polygon's buffers
         // become the next clip's, so a split costs one allocation, not four.
-        SoupPolygon r{std::move(pos), p.id, p.operand, {}, {}};
+        SoupPolygon r{std::move(pos), p.id, p.operand, {}, {}, {}};
         pos = Polygon{};
+        p.splits = r.splits = p.splits == 255 ? p.splits : static_cast<std::uint8_t>(p.splits + 1);
         std::swap(p.poly, neg);
         update_bounds(p);
         update_bounds(r);
@@ -245,7 +246,7 @@ bool emit_single_solid(Subproblem& pb, const SolveContext& ctx, const SoupSummar
   const bool in_front = ctx.inside(front), in_back = ctx.inside(back);
   if (in_front == in_back) return true;
   out.reserve(pb.soup.size());
-  for (SoupPolygon& p : pb.soup) out.push_back({std::move(p.poly), p.id, p.operand, in_front});
+  for (SoupPolygon& p : pb.soup) out.push_back({std::move(p.poly), p.id, p.operand, in_front, true, p.splits});
   return true;
 }
 

@@ -133,5 +133,47 @@ TEST(MeshStage, DiagonalThroughAUsedVertexIsSplit) {
   EXPECT_EQ(two.size(), 6u);
 }
 
+TEST(MeshStage, HolesThatHideEachOtherAreBridgedInOrder) {
+  // A square region in z = 0 with five square holes: the central one (A)
+  // sees no outer corner past the four others, which sit on its lines of
+  // sight. Bridging the holes in the order given (A first) finds no outer
+  // vertex for A; in decreasing order of their largest vertex every hole
+  // sees the outer loop or a hole already joined to it.
+  std::vector<IntPoint> pts{{0, 0, 0}, {100, 0, 0}, {100, 100, 0}, {0, 100, 0}};
+  const std::vector<std::array<std::int64_t, 4>> squares{
+      {48, 48, 52, 52}, {70, 70, 80, 80}, {70, 20, 82, 32}, {20, 70, 32, 82}, {20, 20, 30, 30}};  // A first
+  Regions r;
+  r.edge_begin.push_back(0);
+  r.regions = {{axis_plane(2, 0), 0, {0}}};
+  std::vector<std::vector<std::uint32_t>> loops{{0, 1, 2, 3}};
+  for (const auto& [x0, y0, x1, y1] : squares) {
+    const auto first = static_cast<std::uint32_t>(pts.size());
+    for (const IntPoint& p : {IntPoint{x0, y0, 0}, IntPoint{x0, y1, 0}, IntPoint{x1, y1, 0}, IntPoint{x1, y0, 0}})
+      pts.push_back(p);  // clockwise seen from +z: a hole
+    loops.push_back({first, first + 1, first + 2, first + 3});
+  }
+  // All loops in one region: one edge range, each loop linked to itself.
+  for (const auto& loop : loops) {
+    const auto base = static_cast<std::uint32_t>(r.edges.size());
+    const auto n = static_cast<std::uint32_t>(loop.size());
+    for (std::uint32_t k = 0; k < n; ++k) r.edges.push_back({loop[k], loop[(k + 1) % n], 0, base + (k + 1) % n, true});
+  }
+  r.edge_begin.push_back(static_cast<std::uint32_t>(r.edges.size()));
+  const OutputVertices verts = grid_vertices(pts);
+  std::vector<std::array<std::uint32_t, 3>> tris;
+  ASSERT_TRUE(triangulate_region(r, 0, verts, tris));
+  // Counter-clockwise triangles covering the square minus the holes.
+  std::int64_t twice_area = 0;
+  for (const auto& t : tris) {
+    const IntPoint &a = pts[t[0]], &b = pts[t[1]], &c = pts[t[2]];
+    const std::int64_t cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    EXPECT_GT(cross, 0);
+    twice_area += cross;
+  }
+  std::int64_t holes = 0;
+  for (const auto& [x0, y0, x1, y1] : squares) holes += (x1 - x0) * (y1 - y0);
+  EXPECT_EQ(twice_area, 2 * (100 * 100 - holes));
+}
+
 }  // namespace
 }  // namespace ember::core

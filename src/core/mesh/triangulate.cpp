@@ -266,6 +266,25 @@ bool triangulate_region(const Regions& regions, std::uint32_t region, const Outp
     }
   }
   if (outer.empty()) return false;
+  // Holes in decreasing order of their lexicographically largest vertex (the
+  // order of Eberly's hole bridging): the ray from that vertex in the
+  // direction of the order meets only the outer loop and holes already
+  // joined to it, so a visible outer vertex exists even where holes sit in a
+  // row and would hide each other's bridges.
+  if (holes.size() > 1) {
+    std::vector<std::pair<std::uint32_t, std::size_t>> top(holes.size());  // (largest vertex, hole)
+    for (std::size_t i = 0; i < holes.size(); ++i) {
+      top[i] = {holes[i][0], i};
+      for (const std::uint32_t v : holes[i])
+        if (compare_lex(k.pt(v), k.pt(top[i].first)) > 0) top[i].first = v;
+    }
+    std::stable_sort(top.begin(), top.end(), [&](const auto& a, const auto& b) {
+      return compare_lex(k.pt(a.first), k.pt(b.first)) > 0;
+    });
+    std::vector<std::vector<std::uint32_t>> sorted(holes.size());
+    for (std::size_t i = 0; i < top.size(); ++i) sorted[i] = std::move(holes[top[i].second]);
+    holes = std::move(sorted);
+  }
   for (std::size_t i = 0; i < holes.size(); ++i) {
     const std::span<const std::vector<std::uint32_t>> rest(holes.data() + i + 1, holes.size() - i - 1);
     if (!bridge_hole(k, outer, holes[i], rest)) return false;

@@ -1,0 +1,74 @@
+// Putting whole input triangles back together (whole_triangles.hpp).
+#include "core/whole_triangles.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <cstdint>
+
+namespace ember::core {
+
+namespace {
+
+/// The shares are exact in double: each is 2^-s with s <= 52, and the pieces
+/// of one triangle are distinct leaves of its split tree, so every partial
+/// sum is a multiple of 2^-52 in [0, 1].
+constexpr int kMaxExactSplits = 52;
+static_assert(std::numeric_limits<double>::digits >= kMaxExactSplits + 1,
+              "multiples of 2^-52 in [0, 1] must be exact doubles");
+
+}  // namespace
+
+std::size_t merge_whole_triangles(std::vector<OutputPolygon>& polys, std::span<const std::array<IntPoint, 3>> corners) {
+  const std::size_t n_ids = corners.size();
+  std::vector<double> share(n_ids, 0.0);
+  std::vector<std::uint32_t> first(n_ids, UINT32_MAX);
+  std::vector<char> mixed(n_ids, 0);
+  // One pass in output order (a few operations per polygon).
+  for (std::uint32_t i = 0; i < polys.size(); ++i) {
+    const OutputPolygon& p = polys[i];
+    if (first[p.id] == UINT32_MAX) {
+      first[p.id] = i;
+    } else if (polys[first[p.id]].flip != p.flip) {
+      mixed[p.id] = 1;
+    }
+    if (!p.whole_piece || p.splits > kMaxExactSplits) {
+      mixed[p.id] = 1;
+    } else {
+      share[p.id] += std::ldexp(1.0, -p.splits);
+    }
+  }
+  // Decided before any polygon changes (a merged triangle's first piece is rewritten below).
+  std::vector<char> merged(n_ids, 0);
+  std::size_t count = 0;
+  for (std::size_t id = 0; id < n_ids; ++id) {
+    merged[id] = first[id] != UINT32_MAX && !mixed[id] && share[id] == 1.0 && polys[first[id]].splits > 0;
+    count += merged[id];
+  }
+  // The first piece of each merged triangle becomes the triangle; the others go.
+  std::vector<char> drop(polys.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 1024), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      OutputPolygon& p = polys[i];
+      if (!merged[p.id]) continue;
+      if (first[p.id] != i) {
+        drop[i] = 1;
+        continue;
+      }
+      const std::array<IntPoint, 3>& c = corners[p.id];
+      p.poly = *make_triangle(c[0], c[1], c[2]);  // the soup's triangle: it has area
+      p.splits = 0;
+    }
+  });
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < polys.size(); ++i) {
+    if (drop[i]) continue;
+    if (kept != i) polys[kept] = std::move(polys[i]);
+    ++kept;
+  }
+  polys.resize(kept);
+  return count;
+}
+
+}  // namespace ember::core

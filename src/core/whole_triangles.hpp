@@ -1,0 +1,22 @@
+#pragma once
+// Input triangles that the subdivision cut into pieces but that reach the
+// output whole, put back together before the mesh stage.
+#include <array>
+#include <span>
+#include <vector>
+
+#include "core/solve.hpp"
+
+namespace ember::core {
+
+/// When every piece that the subdivision cut from a triangle reached the
+/// output uncut by its leaf (OutputPolygon::whole_piece) and with one
+/// orientation, the pieces together are exactly the triangle: their shares
+/// 2^-splits sum to 1 only if none is missing. The triangle (rebuilt from its
+/// grid corners, `corners[id]`, as the soup built it) replaces its first piece
+/// and the other pieces are removed, so the mesh stage has no cut points to
+/// weld, merge and remove for it. Order is otherwise kept.
+/// Returns how many triangles were put back together.
+std::size_t merge_whole_triangles(std::vector<OutputPolygon>& polys, std::span<const std::array<IntPoint, 3>> corners);
+
+}  // namespace ember::core
