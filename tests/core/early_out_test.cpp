@@ -31,6 +31,26 @@ TEST(EarlyOut, SolidFlagGivesSameVolumesAsGeneralPath) {
   }
 }
 
+TEST(EarlyOut, TrianglesTheSubdivisionCutComeBackWhole) {
+  // A sphere well inside a finely tessellated box: nothing meets, so the
+  // union is the box's triangles and the intersection the sphere's. The
+  // subdivision still cuts the triangles its planes cross; every piece
+  // reaches the output uncut, so each such triangle is emitted whole again
+  // (even as raw polygons, where nothing else would join the pieces).
+  const std::vector<Mesh> ops =
+      snapped({tessellated_box({-1, -1, -1}, {1, 1, 1}, 12), icosphere({0.1, -0.05, 0.02}, 0.5, 3)});
+  BooleanOptions polygons;
+  polygons.output = BooleanOptions::Output::Polygons;
+  const BooleanResult uni = run_checked(ops, Op::Union, polygons);
+  EXPECT_GT(uni.stats.merged_triangles, 0u) << "the subdivision should have cut some box triangles";
+  EXPECT_EQ(uni.mesh.face_count(), ops[0].face_count());
+  const BooleanResult inter = run_checked(ops, Op::Intersection, polygons);
+  EXPECT_EQ(inter.mesh.face_count(), ops[1].face_count());
+  const BooleanResult mesh = run_checked(ops, Op::Union);
+  EXPECT_EQ(mesh.stats.merged_triangles, uni.stats.merged_triangles);
+  EXPECT_TRUE(close_rel(volume(mesh.mesh), volume(ops[0]), 1e-12));
+}
+
 TEST(EarlyOut, PerOperandSolidFlags) {
   const std::vector<Mesh> ops = curved_pair();
   BooleanOptions first_only;
