@@ -350,6 +350,9 @@ bool trace_onto(const Soup& soup, const SoupPolygon& t, const Dyadic& start, int
   delta[t.operand] += 1;
   for (const SoupPolygon& p : soup) {
     if (p.id == t.id || p.operand == skip || box_disjoint(p, seg.lo, seg.hi)) continue;
+    // A clear miss of the segment's line misses x too (x is on the line), so
+    // it decides both cases below before the exact coplanarity test.
+    if (line_clearly_misses(seg.line, seg.uv, p.poly)) continue;
     if (coplanar(p.poly.support, S)) {
       // Meets the segment only at x (the segment is transverse to S).
       const int loc = locate(p.poly, x);

@@ -61,8 +61,10 @@ bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int 
     seg.lo[i] = std::min(approx_coord(a, i), approx_coord(b, i));
     seg.hi[i] = std::max(approx_coord(a, i), approx_coord(b, i));
   }
+  // The box test here, not only inside add_crossing: most polygons of a leaf
+  // miss the segment's box, and this skips the call for them.
   for (const SoupPolygon& p : soup)
-    if (p.operand != skip && !add_crossing(seg, p, w)) return false;
+    if (p.operand != skip && !box_disjoint(p, seg.lo, seg.hi) && !add_crossing(seg, p, w)) return false;
   return true;
 }
 
