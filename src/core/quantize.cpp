@@ -103,7 +103,9 @@ Vec3d Quantizer::dequantize(const Point& p) const {
 }
 
 Vec3d Quantizer::dequantize(const IntPoint& p) const {
-  return dequantize(to_point(p));
+  // The grid-point path of dequantize(Point) without building a Point.
+  const auto grid = [&](std::int64_t v, int i) { return static_cast<double>(v + c_[i]) * inv_scale_; };
+  return Vec3d{grid(p.x, 0), grid(p.y, 1), grid(p.z, 2)};
 }
 
 double Quantizer::grid_spacing() const { return std::ldexp(1.0, -k_); }

@@ -291,6 +291,21 @@ TEST(ExactOrder, AsGridPointRecognizesExactlyTheIntegerPoints) {
     if (const auto sss = intersect(*t1, *t2, *t3)) check(*sss);
     if (const auto off = intersect(*t1, *t2, shifted(*t3, 1))) check(*off);
   }
+  // w = 1 takes a fast path (the numerators are the coordinates): the range
+  // limits and numerators past int64 must still be rejected.
+  const auto w_one = [](const PointXYZ& x, const PointXYZ& y, const PointXYZ& z) {
+    Point p{x, y, z, PointW(1), {}};
+    detail::cache_approx(p);
+    return p;
+  };
+  const PointXYZ big = PointXYZ::assume_bound(PointXYZ(1) * Int<64>(std::int64_t{1} << 62) * Int<64>(8));  // 2^65
+  for (const std::int64_t edge : {kCoordLimit, -kCoordLimit, kCoordLimit + 1, -kCoordLimit - 1, std::int64_t{0}}) {
+    check(w_one(PointXYZ(edge), PointXYZ(3), PointXYZ(-edge / 2)));
+    check(w_one(PointXYZ(1), PointXYZ(edge), PointXYZ(2)));
+  }
+  check(w_one(big, PointXYZ(0), PointXYZ(0)));
+  check(w_one(PointXYZ(0), -big, PointXYZ(0)));
+  check(w_one(PointXYZ(0), PointXYZ(0), PointXYZ::assume_bound(big + Int<64>(5))));
   EXPECT_GT(grid_found, 2000);  // the SSS grid points and the "G" kind
   EXPECT_GT(rejected, 2000);
 }
