@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace ember::core {
 
@@ -22,14 +23,15 @@ static_assert(std::numeric_limits<double>::digits >= kMaxExactSplits + 1,
 
 std::size_t merge_whole_triangles(std::vector<OutputPolygon>& polys, std::span<const std::array<IntPoint, 3>> corners) {
   const std::size_t n_ids = corners.size();
+  if (polys.size() >= UINT32_MAX) return 0;  // positions are kept in 32 bits; nothing merged then
   std::vector<double> share(n_ids, 0.0);
   std::vector<std::uint32_t> first(n_ids, UINT32_MAX);
   std::vector<char> mixed(n_ids, 0);
-  // One pass in output order (a few operations per polygon).
-  for (std::uint32_t i = 0; i < polys.size(); ++i) {
+  // One serial pass in output order (a few operations per polygon).
+  for (std::size_t i = 0; i < polys.size(); ++i) {
     const OutputPolygon& p = polys[i];
     if (first[p.id] == UINT32_MAX) {
-      first[p.id] = i;
+      first[p.id] = static_cast<std::uint32_t>(i);
     } else if (polys[first[p.id]].flip != p.flip) {
       mixed[p.id] = 1;
     }
