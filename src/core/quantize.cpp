@@ -86,14 +86,10 @@ IntPoint Quantizer::quantize(const Vec3d& p) const {
 }
 
 Vec3d Quantizer::dequantize(const Point& p) const {
-  // Grid points (w = 1, |x| <= 2^25) are most output vertices: x + C fits an
-  // int64 whose conversion to double is correctly rounded; 2^-k is exact.
-  if (p.w == PointW(1)) {
-    const auto grid = [&](const PointXYZ& v, int i) {
-      return static_cast<double>(static_cast<std::int64_t>(v.limb(0)) + c_[i]) * inv_scale_;
-    };
-    return Vec3d{grid(p.x, 0), grid(p.y, 1), grid(p.z, 2)};
-  }
+  // Grid points (w = 1, |x| <= 2^25) are most output vertices.
+  if (p.w == PointW(1))
+    return dequantize(IntPoint{static_cast<std::int64_t>(p.x.limb(0)), static_cast<std::int64_t>(p.y.limb(0)),
+                               static_cast<std::int64_t>(p.z.limb(0))});
   // x = (X + C W) / W * 2^-k: |C| < 2^63, W < 2^162 so C W < 2^225, sum < 2^226.
   const Int<64> cx(c_[0]), cy(c_[1]), cz(c_[2]);
   const auto x = ratio_to_double(p.x + cx * p.w, p.w);
@@ -103,7 +99,8 @@ Vec3d Quantizer::dequantize(const Point& p) const {
 }
 
 Vec3d Quantizer::dequantize(const IntPoint& p) const {
-  // The grid-point path of dequantize(Point) without building a Point.
+  // |x| <= 2^25: x + C fits an int64 whose conversion to double is correctly
+  // rounded; 2^-k is exact.
   const auto grid = [&](std::int64_t v, int i) { return static_cast<double>(v + c_[i]) * inv_scale_; };
   return Vec3d{grid(p.x, 0), grid(p.y, 1), grid(p.z, 2)};
 }

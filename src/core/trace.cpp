@@ -61,15 +61,16 @@ bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int 
     seg.lo[i] = std::min(approx_coord(a, i), approx_coord(b, i));
     seg.hi[i] = std::max(approx_coord(a, i), approx_coord(b, i));
   }
-  // The box test here, not only inside add_crossing: most polygons of a leaf
-  // miss the segment's box, and this skips the call for them.
-  for (const SoupPolygon& p : soup)
-    if (p.operand != skip && !box_disjoint(p, seg.lo, seg.hi) && !add_crossing(seg, p, w)) return false;
+  // The filters here, before the call: most polygons of a leaf miss the
+  // segment's box.
+  for (const SoupPolygon& p : soup) {
+    if (p.operand == skip || box_disjoint(p, seg.lo, seg.hi) || line_clearly_misses(seg.line, seg.uv, p.poly)) continue;
+    if (!add_crossing(seg, p, w)) return false;
+  }
   return true;
 }
 
 bool add_crossing(const AxisSegment& s, const SoupPolygon& p, Wnv& w) {
-  if (box_disjoint(p, s.lo, s.hi) || line_clearly_misses(s.line, s.uv, p.poly)) return true;
   const SegmentHit h = intersect_segment(s.line, s.r0, s.r1, p.poly);
   switch (h.kind) {
     case LineHit::Miss:

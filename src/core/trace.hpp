@@ -30,7 +30,9 @@ struct AxisSegment {
 
 /// Adds polygon p's crossing of the segment to w. False when the segment
 /// meets p degenerately: at an edge or vertex, at a segment end, or touching
-/// it within p's plane.
+/// it within p's plane. Exact on its own; callers first skip the polygons
+/// that miss the segment's box or clearly miss its line (line_clearly_misses),
+/// the cheap filters, which is where most polygons leave.
 bool add_crossing(const AxisSegment& s, const SoupPolygon& p, Wnv& w);
 
 /// Polygons of this operand are ignored by a trace (its winding number is
