@@ -48,14 +48,15 @@ Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer&
   // Round every vertex in parallel (the costly part), then weld serially in
   // output order so vertex numbering is deterministic.
   std::vector<std::size_t> offset(polys.size() + 1, 0);
-  for (std::size_t i = 0; i < polys.size(); ++i) offset[i + 1] = offset[i] + polys[i].poly.vertices.size();
+  for (std::size_t i = 0; i < polys.size(); ++i) offset[i + 1] = offset[i] + core::corner_count(polys[i]);
   std::vector<Vec3d> rounded(offset.back());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const core::OutputPolygon& p = polys[i];
-      const std::size_t n = p.poly.vertices.size();
+      const std::size_t n = core::corner_count(p);
       for (std::size_t k = 0; k < n; ++k) {
-        const Vec3d x = q.dequantize(p.poly.vertices[p.flip ? n - 1 - k : k]);
+        const std::size_t at = p.flip ? n - 1 - k : k;
+        const Vec3d x = p.corners ? q.dequantize((*p.corners)[at]) : q.dequantize(p.poly.vertices[at]);
         rounded[offset[i] + k] = {x.x + 0.0, x.y + 0.0, x.z + 0.0};  // -0.0 -> +0.0 so equal points weld
       }
     }
@@ -223,7 +224,6 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       result.stats.merged_triangles = core::merge_whole_triangles(polys, grid.corners);
     });
   }
-  grid = {};
   const auto solved = std::chrono::steady_clock::now();
   result.stats.solve_ms = ms_between(proved, solved);
   report(options, "export", 0.9);
@@ -251,6 +251,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       result.warnings.push_back(std::to_string(m.stats.rounded_degenerate) +
                                 " output triangles have zero area after rounding to double (exact result is fine)");
   }
+  // Unbuilt output triangles point into grid.corners (soup.hpp): freed only now.
+  polys = {};
+  grid = {};
   result.stats.output_polygons = result.mesh.face_count();
   result.stats.output_vertices = result.mesh.vertices.size();
   const auto end = std::chrono::steady_clock::now();

@@ -125,13 +125,11 @@ InputSoup build_soup(const GridInput& gi, bool keep_grid) {
       if (id[i + 1] == id[i]) continue;
       const GridTriangle& t = gi.triangles[i];
       const std::uint32_t k = id[i];
-      SoupPolygon& p = in.soup[k];
-      p.poly = *make_triangle(t.p[0], t.p[1], t.p[2]);  // has area: pass 1
-      p.id = k;
-      p.operand = t.operand;
-      update_bounds(p);
-      in.sources[k] = {t.operand, t.face};
+      // Unbuilt (soup.hpp): it points at its corners, which live in the
+      // grid table for the whole Boolean. It has area: pass 1.
       in.grid.corners[k] = t.p;
+      in.soup[k] = unbuilt_triangle(in.grid.corners[k], k, t.operand);
+      in.sources[k] = {t.operand, t.face};
       if (keep_grid) in.grid.vertex_ids[k] = gi.vertex_ids[i];
     }
   });

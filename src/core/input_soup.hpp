@@ -24,7 +24,9 @@ std::vector<std::size_t> count_open_edges(const GridInput& gi);
 
 /// The non-degenerate grid triangles as the root soup: ids in input order
 /// (the total order of coplanar overlaps), sources[id] their origin,
-/// grid.corners by id (for the solid proof and merge_whole_triangles) and,
+/// grid.corners by id (the soup's unbuilt triangles point into it, so it must
+/// outlive the soup and the solve's output; the solid proof and
+/// merge_whole_triangles read it too) and,
 /// when `keep_grid`, grid.vertex_ids by id for the solid proof.
 struct InputSoup {
   Soup soup;

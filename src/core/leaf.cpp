@@ -348,19 +348,21 @@ bool trace_onto(const Soup& soup, const SoupPolygon& t, const Dyadic& start, int
   }
   delta.assign(w.size(), 0);
   delta[t.operand] += 1;
+  Polygon scratch;  // for unbuilt triangles (the proof traces in the root soup)
   for (const SoupPolygon& p : soup) {
     if (p.id == t.id || p.operand == skip || box_disjoint(p, seg.lo, seg.hi)) continue;
     // A clear miss of the segment's line misses x too (x is on the line), so
     // it decides both cases below before the exact coplanarity test.
-    if (line_clearly_misses(seg.line, seg.uv, p.poly)) continue;
-    if (coplanar(p.poly.support, S)) {
+    if (line_clearly_misses(seg.line, seg.uv, p)) continue;
+    const Polygon& poly = built_polygon(p, scratch);
+    if (coplanar(poly.support, S)) {
       // Meets the segment only at x (the segment is transverse to S).
-      const int loc = locate(p.poly, x);
+      const int loc = locate(poly, x);
       if (loc == 0) return false;
-      if (loc < 0) delta[p.operand] += same_orientation(p.poly.support, S) ? 1 : -1;
+      if (loc < 0) delta[p.operand] += same_orientation(poly.support, S) ? 1 : -1;
       continue;
     }
-    if (!add_crossing(seg, p, w)) return false;
+    if (!add_crossing(seg, poly, p.operand, w)) return false;
   }
   return true;
 }
@@ -475,7 +477,8 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
 
 bool classify_polygon(const Subproblem& pb, const SoupPolygon& t, Wnv& w_front, Wnv& w_back) {
   LeafScratch scratch;
-  return classify_piece(pb, t, t.poly, false, t.id, w_front, w_back, scratch);
+  Polygon built;
+  return classify_piece(pb, t, built_polygon(t, built), false, t.id, w_front, w_back, scratch);
 }
 
 namespace {

@@ -13,6 +13,10 @@ namespace ember::core {
 
 /// A piece of an input polygon that lies on the result's surface.
 struct OutputPolygon {
+  /// Only the support plane when `corners` is set: an input triangle that an
+  /// early-out emitted unbuilt (soup.hpp), or that merge_whole_triangles put
+  /// back together. Its corners are grid points, which the mesh stage welds by
+  /// their coordinates; it builds edge planes only where a T-junction test needs them.
   Polygon poly;
   std::uint32_t id = 0;       ///< source polygon (input triangle) id
   std::uint32_t operand = 0;
@@ -22,7 +26,11 @@ struct OutputPolygon {
   /// made by `splits` subdivision splits (SoupPolygon::splits).
   bool whole_piece = false;
   std::uint8_t splits = 0;
+  const std::array<IntPoint, 3>* corners = nullptr;  ///< set iff unbuilt (GridTriangles::corners[id])
 };
+
+/// How many corners p has (3 for an unbuilt triangle).
+inline std::size_t corner_count(const OutputPolygon& p) { return p.corners ? 3 : p.poly.vertices.size(); }
 
 struct SolveContext {
   std::size_t operands = 0;

@@ -8,17 +8,57 @@ namespace ember::core {
 void update_bounds(SoupPolygon& p) {
   constexpr double kMargin = 1.0 / 65536;
   std::array<double, 3> lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (const Point& v : p.poly.vertices) {
-    const auto a = approx(v);
+  const auto add = [&](const std::array<double, 3>& a) {
     for (int i = 0; i < 3; ++i) {
       lo[i] = std::min(lo[i], a[i]);
       hi[i] = std::max(hi[i], a[i]);
     }
+  };
+  if (p.corners) {
+    // The approximation of a grid point (w = 1) is its exact coordinates.
+    for (const IntPoint& c : *p.corners)
+      add({static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z)});
+  } else {
+    for (const Point& v : p.poly.vertices) add(approx(v));
   }
   for (int i = 0; i < 3; ++i) {
     p.lo[i] = lo[i] - kMargin;
     p.hi[i] = hi[i] + kMargin;
   }
+}
+
+SoupPolygon unbuilt_triangle(const std::array<IntPoint, 3>& c, std::uint32_t id, std::uint32_t operand) {
+  SoupPolygon p;
+  p.poly.support = *supporting_plane(c[0], c[1], c[2]);  // the caller checked the area
+  p.corners = &c;
+  p.id = id;
+  p.operand = operand;
+  update_bounds(p);
+  return p;
+}
+
+void materialize(SoupPolygon& p) {
+  if (!p.corners) return;
+  const std::array<IntPoint, 3>& c = *p.corners;
+  p.poly = *make_triangle(c[0], c[1], c[2]);
+  p.corners = nullptr;
+}
+
+bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const SoupPolygon& p) {
+  if (!p.corners) return line_clearly_misses(l, uv, p.poly);
+  std::array<std::array<double, 3>, 3> v;
+  for (int i = 0; i < 3; ++i) {
+    const IntPoint& c = (*p.corners)[i];
+    v[i] = {static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z)};
+  }
+  return line_clearly_misses(l, uv, p.poly.support, 3, [&](std::size_t i) -> const std::array<double, 3>& { return v[i]; });
+}
+
+const Polygon& built_polygon(const SoupPolygon& p, Polygon& scratch) {
+  if (!p.corners) return p.poly;
+  const std::array<IntPoint, 3>& c = *p.corners;
+  assign_triangle(c[0], c[1], c[2], scratch);  // has area: it is a soup triangle
+  return scratch;
 }
 
 Dyadic with_shift(const Dyadic& p, int s) {

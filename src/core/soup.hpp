@@ -12,6 +12,16 @@ namespace ember::core {
 /// A convex polygon of the soup, tagged with its operand (its winding-number
 /// transition vector is that operand's unit vector) and a global id that
 /// orders coincident polygons (Fig. 8: the lowest id emits an overlap).
+///
+/// An input triangle that no split has cut yet is stored *unbuilt*: `corners`
+/// points at its grid corners (GridTriangles::corners[id], alive for the whole
+/// Boolean) and `poly` holds only its support plane, no edges or vertices.
+/// Most triangles lie far from the other operands and leave the subdivision
+/// through an early-out without ever being clipped or traced; building their
+/// plane-based form (~500 bytes of edge planes and homogeneous vertices on
+/// the heap) up front was the set-up's main cost and the soup's main memory.
+/// materialize() builds it where it is needed: before a clip that cuts the
+/// triangle, at a leaf, and for an exact trace test.
 struct SoupPolygon {
   Polygon poly;
   std::uint32_t id = 0;       ///< input triangle index, unique
@@ -21,13 +31,32 @@ struct SoupPolygon {
   /// that many or more). The pieces of one triangle are the leaves of a binary
   /// tree of splits, so their shares 2^-splits sum to exactly 1.
   std::uint8_t splits = 0;
+  const std::array<IntPoint, 3>* corners = nullptr;  ///< set iff unbuilt
 };
 using Soup = std::vector<SoupPolygon>;
 
 /// Recomputes the conservative box of a polygon from double approximations of
-/// its exact vertices. |coord| < 2^26 so approx() errs by < 2^-26 units; the
-/// margin 2^-16 covers it with room to spare.
+/// its exact vertices (an unbuilt triangle: its grid corners, exact in double).
+/// |coord| < 2^26 so approx() errs by < 2^-26 units; the margin 2^-16 covers it
+/// with room to spare.
 void update_bounds(SoupPolygon& p);
+
+/// The soup polygon for input triangle `c` (non-degenerate), unbuilt: its
+/// support plane, its box, and a pointer to `c`, which must outlive it.
+SoupPolygon unbuilt_triangle(const std::array<IntPoint, 3>& c, std::uint32_t id, std::uint32_t operand);
+
+/// Builds an unbuilt triangle's edges and vertices (make_triangle of its
+/// corners: the same polygon the soup used to start from). No-op otherwise.
+void materialize(SoupPolygon& p);
+
+/// line_clearly_misses for a soup polygon, built or not (an unbuilt
+/// triangle's corners are exact in double): the trace filter that lets most
+/// unbuilt triangles a trace passes near stay unbuilt.
+bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const SoupPolygon& p);
+
+/// p's polygon with edges and vertices: p.poly itself, or, for an unbuilt
+/// triangle, `scratch` filled with it (its buffers are reused across calls).
+const Polygon& built_polygon(const SoupPolygon& p, Polygon& scratch);
 
 /// The polygon's conservative box misses the box [lo, hi].
 inline bool box_disjoint(const SoupPolygon& p, const std::array<double, 3>& lo, const std::array<double, 3>& hi) {

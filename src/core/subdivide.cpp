@@ -178,6 +178,25 @@ void split_range(Soup& soup, std::size_t begin, std::size_t end, int axis, std::
       right.push_back(std::move(p));
       continue;
     }
+    // An unbuilt triangle is sided by its integer corners (clip's exact
+    // classification of them) and built only when the plane cuts it.
+    if (p.corners) {
+      int below = 0, above = 0;
+      for (const IntPoint& c : *p.corners) {
+        const std::int64_t x = axis == 0 ? c.x : (axis == 1 ? c.y : c.z);
+        below += x < position;
+        above += x > position;
+      }
+      if (above == 0) {  // Negative or On: polygons in the plane go to the lower child only
+        left.push_back(std::move(p));
+        continue;
+      }
+      if (below == 0) {
+        right.push_back(std::move(p));
+        continue;
+      }
+      materialize(p);
+    }
     switch (clip(p.poly, plane, neg, pos)) {
       case ClipSide::Negative:
       case ClipSide::On:  // polygons in the plane go to the lower child only
@@ -246,7 +265,7 @@ bool emit_single_solid(Subproblem& pb, const SolveContext& ctx, const SoupSummar
   const bool in_front = ctx.inside(front), in_back = ctx.inside(back);
   if (in_front == in_back) return true;
   out.reserve(pb.soup.size());
-  for (SoupPolygon& p : pb.soup) out.push_back({std::move(p.poly), p.id, p.operand, in_front, true, p.splits});
+  for (SoupPolygon& p : pb.soup) out.push_back({std::move(p.poly), p.id, p.operand, in_front, true, p.splits, p.corners});
   return true;
 }
 
@@ -301,6 +320,7 @@ void solve_into(Subproblem&& pb, const SolveContext& ctx, OutputChunks& chunks) 
     if (4 * straddling > 3 * pb.soup.size()) axis = -1;
   }
   if (axis < 0) {
+    for (SoupPolygon& p : pb.soup) materialize(p);  // a leaf works on whole plane-based polygons
     solve_leaf(pb, ctx, out);
     if (!out.empty()) chunks.push_back(std::move(out));
     return;

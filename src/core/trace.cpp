@@ -63,15 +63,21 @@ bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int 
   }
   // The filters here, before the call: most polygons of a leaf miss the
   // segment's box.
+  Polygon scratch;  // an unbuilt triangle that passes the filters is built here
   for (const SoupPolygon& p : soup) {
-    if (p.operand == skip || box_disjoint(p, seg.lo, seg.hi) || line_clearly_misses(seg.line, seg.uv, p.poly)) continue;
-    if (!add_crossing(seg, p, w)) return false;
+    if (p.operand == skip || box_disjoint(p, seg.lo, seg.hi) || line_clearly_misses(seg.line, seg.uv, p)) continue;
+    if (!add_crossing(seg, built_polygon(p, scratch), p.operand, w)) return false;
   }
   return true;
 }
 
 bool add_crossing(const AxisSegment& s, const SoupPolygon& p, Wnv& w) {
-  const SegmentHit h = intersect_segment(s.line, s.r0, s.r1, p.poly);
+  Polygon scratch;
+  return add_crossing(s, built_polygon(p, scratch), p.operand, w);
+}
+
+bool add_crossing(const AxisSegment& s, const Polygon& poly, std::uint32_t operand, Wnv& w) {
+  const SegmentHit h = intersect_segment(s.line, s.r0, s.r1, poly);
   switch (h.kind) {
     case LineHit::Miss:
       return true;
@@ -81,14 +87,14 @@ bool add_crossing(const AxisSegment& s, const SoupPolygon& p, Wnv& w) {
       if (h.at_endpoint) return false;
       // Crossing along +axis through a polygon whose normal points along
       // +axis goes from its back to its front: w drops by its transition.
-      w[p.operand] -= s.dir * p.poly.support.normal(s.line.axis).sign();
+      w[operand] -= s.dir * poly.support.normal(s.line.axis).sign();
       return true;
     case LineHit::InPlane: {
       std::vector<Plane> cons;
-      cons.reserve(p.poly.edges.size() + 2);
+      cons.reserve(poly.edges.size() + 2);
       cons.push_back(s.r0);
       cons.push_back(s.r1);
-      cons.insert(cons.end(), p.poly.edges.begin(), p.poly.edges.end());
+      cons.insert(cons.end(), poly.edges.begin(), poly.edges.end());
       return !line_region_nonempty(s.l0, s.l1, cons);
     }
   }

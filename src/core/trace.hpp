@@ -34,6 +34,8 @@ struct AxisSegment {
 /// that miss the segment's box or clearly miss its line (line_clearly_misses),
 /// the cheap filters, which is where most polygons leave.
 bool add_crossing(const AxisSegment& s, const SoupPolygon& p, Wnv& w);
+/// The same for a built polygon of `operand` (built_polygon).
+bool add_crossing(const AxisSegment& s, const Polygon& poly, std::uint32_t operand, Wnv& w);
 
 /// Polygons of this operand are ignored by a trace (its winding number is
 /// known otherwise); kNoSkip counts every polygon.

@@ -58,8 +58,9 @@ std::size_t merge_whole_triangles(std::vector<OutputPolygon>& polys, std::span<c
         drop[i] = 1;
         continue;
       }
-      const std::array<IntPoint, 3>& c = corners[p.id];
-      p.poly = *make_triangle(c[0], c[1], c[2]);  // the soup's triangle: it has area
+      // Unbuilt, as the soup held it: a piece keeps its triangle's support plane.
+      p.poly = Polygon{p.poly.support, {}, {}};
+      p.corners = &corners[p.id];
       p.splits = 0;
     }
   });

@@ -12,8 +12,8 @@ namespace ember::core {
 /// When every piece that the subdivision cut from a triangle reached the
 /// output uncut by its leaf (OutputPolygon::whole_piece) and with one
 /// orientation, the pieces together are exactly the triangle: their shares
-/// 2^-splits sum to 1 only if none is missing. The triangle (rebuilt from its
-/// grid corners, `corners[id]`, as the soup built it) replaces its first piece
+/// 2^-splits sum to 1 only if none is missing. The triangle (unbuilt, pointing
+/// at its grid corners `corners[id]`, as the soup held it) replaces its first piece
 /// and the other pieces are removed, so the mesh stage has no cut points to
 /// weld, merge and remove for it. Order is otherwise kept.
 /// Returns how many triangles were put back together.

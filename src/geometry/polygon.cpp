@@ -3,15 +3,21 @@
 
 namespace ember {
 
-std::optional<Polygon> make_triangle(const IntPoint& p0, const IntPoint& p1, const IntPoint& p2) {
+bool assign_triangle(const IntPoint& p0, const IntPoint& p1, const IntPoint& p2, Polygon& out) {
   const std::optional<Plane> support = supporting_plane(p0, p1, p2);
-  if (!support) return std::nullopt;
-  Polygon poly;
-  poly.support = *support;
-  poly.edges = {edge_plane(p0, p1, *support), edge_plane(p1, p2, *support), edge_plane(p2, p0, *support)};
+  if (!support) return false;
+  out.support = *support;
+  // Assigning lists keeps the buffers' capacity: a reused polygon allocates nothing.
+  out.edges = {edge_plane(p0, p1, *support), edge_plane(p1, p2, *support), edge_plane(p2, p0, *support)};
   // The grid points themselves are the vertices (w = 1): the same points as
   // support ∩ edges[i-1] ∩ edges[i], without the 188-bit intersection.
-  poly.vertices = {to_point(p0), to_point(p1), to_point(p2)};
+  out.vertices = {to_point(p0), to_point(p1), to_point(p2)};
+  return true;
+}
+
+std::optional<Polygon> make_triangle(const IntPoint& p0, const IntPoint& p1, const IntPoint& p2) {
+  Polygon poly;
+  if (!assign_triangle(p0, p1, p2, poly)) return std::nullopt;
   return poly;
 }
 

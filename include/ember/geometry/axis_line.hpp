@@ -118,15 +118,17 @@ inline std::array<double, 2> line_point_approx(const AxisLine& l) {
 /// subtraction rounding). The margin is twice that, plus 2^-36 because D and
 /// E are themselves computed (each within 2^-19 of the true lengths).
 /// `uv` = line_point_approx(l), computed once per line by the caller.
-inline bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const Polygon& poly) {
-  const int na = poly.support.normal(l.axis).sign();
+/// `vertex(i)` gives vertex i's approximation (within those 8 ulps; exact is fine).
+template <typename VertexApprox>
+inline bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const Plane& support,
+                                std::size_t n, VertexApprox&& vertex) {
+  const int na = support.normal(l.axis).sign();
   if (na == 0) return false;
   const int u = (l.axis + 1) % 3, v = (l.axis + 2) % 3;
   const double U = uv[0], V = uv[1];
-  const std::size_t n = poly.vertices.size();
   for (std::size_t i = 0; i < n; ++i) {
-    const std::array<double, 3>& a = poly.vertices[i].f;
-    const std::array<double, 3>& b = poly.vertices[i + 1 == n ? 0 : i + 1].f;
+    const std::array<double, 3>& a = vertex(i);
+    const std::array<double, 3>& b = vertex(i + 1 == n ? 0 : i + 1);
     const double du = b[u] - a[u], dv = b[v] - a[v], eu = U - a[u], ev = V - a[v];
     const double o = du * ev - dv * eu;
     const double D = std::fabs(du) + std::fabs(dv), E = std::fabs(eu) + std::fabs(ev);
@@ -134,6 +136,11 @@ inline bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& 
     if (na * o < -margin) return true;  // strictly right of a counter-clockwise edge: outside
   }
   return false;
+}
+
+inline bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const Polygon& poly) {
+  return line_clearly_misses(l, uv, poly.support, poly.vertices.size(),
+                             [&](std::size_t i) -> const std::array<double, 3>& { return poly.vertices[i].f; });
 }
 
 /// Segment of the line with classify(r0) <= 0 and classify(r1) <= 0 against a

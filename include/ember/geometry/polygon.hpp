@@ -44,6 +44,9 @@ struct Polygon {
 /// nullopt if the points are collinear. Vertices are stored with w = 1.
 /// Throws ember::Error if a coordinate exceeds kCoordLimit.
 std::optional<Polygon> make_triangle(const IntPoint& p0, const IntPoint& p1, const IntPoint& p2);
+/// make_triangle into an existing polygon, reusing its buffers. False (and
+/// `out` unspecified) if the points are collinear.
+bool assign_triangle(const IntPoint& p0, const IntPoint& p1, const IntPoint& p2, Polygon& out);
 
 /// Planar, strictly convex polygon (no repeated or collinear consecutive
 /// vertices, turning once). nullopt unless all of that holds (decided exactly).

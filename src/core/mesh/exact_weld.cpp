@@ -32,6 +32,8 @@ struct CornerKey {
   bool same_position(const CornerKey& o) const { return x == o.x && y == o.y && z == o.z; }
 };
 
+/// The exact corner; only asked for corners that are not grid points, so
+/// never for an unbuilt triangle's (OutputPolygon::corners).
 const Point& corner_point(std::span<const OutputPolygon> polys, const Cycles& offsets_only,
                           const std::vector<std::uint32_t>& poly_of, std::uint32_t corner) {
   const std::uint32_t p = poly_of[corner];
@@ -45,7 +47,7 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
   Cycles& corners = out.corners;
   corners.offsets.resize(polys.size() + 1, 0);
   for (std::size_t i = 0; i < polys.size(); ++i)
-    corners.offsets[i + 1] = corners.offsets[i] + static_cast<std::uint32_t>(polys[i].poly.vertices.size());
+    corners.offsets[i + 1] = corners.offsets[i] + static_cast<std::uint32_t>(corner_count(polys[i]));
   const std::size_t n = corners.offsets.back();
   std::vector<std::uint32_t> poly_of(n);
   std::vector<CornerKey> keys(n);
@@ -55,10 +57,12 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
     for (std::size_t i = r.begin(); i != r.end(); ++i)
       for (std::uint32_t c = corners.offsets[i]; c < corners.offsets[i + 1]; ++c) {
         poly_of[c] = static_cast<std::uint32_t>(i);
-        const Point& pt = polys[i].poly.vertices[c - corners.offsets[i]];
-        const std::optional<IntPoint> g = as_grid_point(pt);
+        const OutputPolygon& p = polys[i];
+        const std::uint32_t k = c - corners.offsets[i];
+        // An unbuilt triangle's corners are grid points already.
+        const std::optional<IntPoint> g = p.corners ? (*p.corners)[k] : as_grid_point(p.poly.vertices[k]);
         if (g) grid_of[c] = *g, is_grid[c] = 1;
-        const Vec3d x = g ? q.dequantize(*g) : q.dequantize(pt);
+        const Vec3d x = g ? q.dequantize(*g) : q.dequantize(p.poly.vertices[k]);
         keys[c] = {x.x + 0.0, x.y + 0.0, x.z + 0.0, c, g.has_value()};  // -0.0 -> +0.0: equal points, equal keys
       }
   });

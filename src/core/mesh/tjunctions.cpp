@@ -50,20 +50,29 @@ double mean_edge_length(std::span<const OutputPolygon> polys, const OutputVertic
   return count ? sum / static_cast<double>(count) : 1.0;
 }
 
-/// Vertices strictly inside edge k of polygon p, ordered from its start.
-void edge_interior_vertices(const Polygon& poly, std::span<const std::uint32_t> ids, std::size_t k,
-                            const OutputVertices& verts, const VertexIndex& index, std::vector<std::uint32_t>& found) {
+/// Vertices strictly inside edge k of polygon op, ordered from its start.
+/// An unbuilt triangle's edge planes are built (into `scratch`) only when the
+/// search finds a candidate: most edges have none.
+void edge_interior_vertices(const OutputPolygon& op, std::span<const std::uint32_t> ids, std::size_t k,
+                            const OutputVertices& verts, const VertexIndex& index, Polygon& scratch,
+                            std::vector<std::uint32_t>& found) {
   const std::size_t n = ids.size();
   const std::uint32_t a = ids[k], b = ids[(k + 1) % n];
   const Vec3d &ra = verts.rounded[a], &rb = verts.rounded[b];
-  const Plane& edge = poly.edges[k];
-  const Plane& before = poly.edges[(k + n - 1) % n];  // crosses the edge's line at a
-  const Plane& after = poly.edges[(k + 1) % n];       // crosses it at b
+  const Polygon* poly = op.corners ? nullptr : &op.poly;
   found.clear();
   index.for_each_near_segment(ra, rb, [&](std::uint32_t v) {
     if (v == a || v == b) return;
+    if (!poly) {
+      const std::array<IntPoint, 3>& c = *op.corners;
+      assign_triangle(c[0], c[1], c[2], scratch);  // corners k, k+1 are ids k, k+1: same order
+      poly = &scratch;
+    }
+    const Plane& edge = poly->edges[k];
+    const Plane& before = poly->edges[(k + n - 1) % n];  // crosses the edge's line at a
+    const Plane& after = poly->edges[(k + 1) % n];       // crosses it at b
     const Point& x = verts.exact[v];
-    if (classify(x, poly.support) != 0 || classify(x, edge) != 0) return;
+    if (classify(x, poly->support) != 0 || classify(x, edge) != 0) return;
     if (classify(x, before) < 0 && classify(x, after) < 0) found.push_back(v);
   });
   if (found.size() < 2) return;
@@ -136,11 +145,12 @@ Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const Out
   std::vector<std::vector<std::uint32_t>> inside(runs);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs, 256), [&](const auto& r) {
     std::vector<std::uint32_t> found;
+    Polygon scratch;
     for (std::size_t run = r.begin(); run != r.end(); ++run) {
       const std::uint32_t c = pairs.corner[pairs.run_begin[run]], p = pairs.poly_of[c];
       const auto ids = corners[p];
       if (ids[c - corners.offsets[p]] == ids[(c - corners.offsets[p] + 1) % ids.size()]) continue;
-      edge_interior_vertices(polys[p].poly, ids, c - corners.offsets[p], verts, index, found);
+      edge_interior_vertices(polys[p], ids, c - corners.offsets[p], verts, index, scratch, found);
       if (!found.empty()) inside[run] = found;
     }
   });
