@@ -12,6 +12,9 @@ import tempfile
 from pathlib import Path
 
 PHASES = ["setup", "proof", "solve", "output"]
+# callgrind collects inside this function (its full signature: see count_instructions).
+BOOLEAN_SYMBOL = ("ember::boolean(std::span<ember::Mesh const, 18446744073709551615ul>, ember::Operation, "
+                  "ember::BooleanOptions const&)")
 
 
 def gmean(xs):
@@ -144,7 +147,10 @@ def count_instructions(ember_bench: Path, data: Path, mesh: str, matrix_b: list[
                                  capture_output=True, text=True, check=True).stdout
             tris += int(re.search(r'"triangles":(\d+)', out).group(1))
         cg = tmp / "callgrind.out"
-        subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={cg}", "--toggle-collect=ember::boolean(*",
+        # The full signature, not "ember::boolean(*": that pattern also matches
+        # boolean's own lambdas (ember::boolean(...)::{lambda()#1}), and entering
+        # one toggles collection off again, which hid the set-up until 2026-11-23.
+        subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={cg}", f"--toggle-collect={BOOLEAN_SYMBOL}",
                         str(ember_bench), "run", str(tmp / "a.bin"), str(tmp / "b.bin"), "--ops", "union", "--runs", "1",
                         "--threads", "1"], capture_output=True, text=True, check=True, timeout=1800)
         total = None

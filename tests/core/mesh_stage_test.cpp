@@ -41,7 +41,9 @@ std::vector<std::uint32_t> walk(const Regions& r, std::uint32_t region) {
 Regions two_planes_sharing_a_split_edge() {
   Regions r;
   r.edge_begin.push_back(0);
-  r.regions = {{axis_plane(2, 0), 0, {0}}, {axis_plane(1, 0), 1, {1}}, {axis_plane(0, 5), 2, {2}}};
+  r.regions = {{axis_plane(2, 0), 0}, {axis_plane(1, 0), 1}, {axis_plane(0, 5), 2}};
+  r.piece_ids = {0, 1, 2};
+  r.piece_begin = {0, 1, 2, 3};
   add_loop(r, 0, {0, 1, 8, 2, 3, 4});
   add_loop(r, 1, {2, 8, 1, 0, 5, 6});
   add_loop(r, 2, {10, 11, 12});
@@ -144,7 +146,9 @@ TEST(MeshStage, HolesThatHideEachOtherAreBridgedInOrder) {
       {48, 48, 52, 52}, {70, 70, 80, 80}, {70, 20, 82, 32}, {20, 70, 32, 82}, {20, 20, 30, 30}};  // A first
   Regions r;
   r.edge_begin.push_back(0);
-  r.regions = {{axis_plane(2, 0), 0, {0}}};
+  r.regions = {{axis_plane(2, 0), 0}};
+  r.piece_ids = {0};
+  r.piece_begin = {0, 1};
   std::vector<std::vector<std::uint32_t>> loops{{0, 1, 2, 3}};
   for (const auto& [x0, y0, x1, y1] : squares) {
     const auto first = static_cast<std::uint32_t>(pts.size());

@@ -182,7 +182,7 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
     // polygon with points on its sides has a strictly convex ear).
     RegionTriangles& rt = fallback[i];
     const Region& region = regions.regions[failed_regions[i]];
-    for (const std::uint32_t p : region.pieces) {
+    for (const std::uint32_t p : regions.pieces(failed_regions[i])) {
       std::vector<std::uint32_t> loop;
       piece_loop(polys[p], cycles[p], loop);
       if (loop.size() >= 3) triangulate_loop(std::move(loop), region.plane, verts, rt.tris);

@@ -55,11 +55,11 @@ VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const Ou
 Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts,
                                  const VertexIndex& index, std::size_t& inserted);
 
-/// A region: pieces of one oriented plane joined across shared edges.
+/// A region: pieces of one oriented plane joined across shared edges (its
+/// pieces are listed in Regions::piece_ids).
 struct Region {
   Plane plane;                   ///< the oriented support plane (outward normal)
   std::uint32_t source = 0;      ///< lowest source id among its pieces (provenance)
-  std::vector<std::uint32_t> pieces;  ///< output polygon indices
 };
 
 /// A directed boundary edge of a region (the region lies to its left, seen
@@ -75,6 +75,13 @@ struct Regions {
   std::vector<Region> regions;
   std::vector<BoundaryEdge> edges;  ///< grouped by region, loops linked by `next`
   std::vector<std::uint32_t> edge_begin;  ///< region r owns edges[edge_begin[r] .. edge_begin[r+1])
+  /// Output polygon indices by region (flat, so that the many one-piece
+  /// regions of a curved result cost no allocation each): region r's pieces
+  /// are piece_ids[piece_begin[r] .. piece_begin[r+1]).
+  std::vector<std::uint32_t> piece_ids, piece_begin;
+  std::span<const std::uint32_t> pieces(std::uint32_t r) const {
+    return {piece_ids.data() + piece_begin[r], piece_begin[r + 1] - piece_begin[r]};
+  }
 };
 
 /// A piece's cycle (step 2's, unflipped order) around its outward normal,

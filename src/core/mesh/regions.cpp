@@ -127,7 +127,8 @@ void link_loops(const OutputVertices& verts, const Plane& plane, std::vector<Bou
 
 struct GroupResult {
   std::vector<Region> regions;
-  std::vector<std::vector<BoundaryEdge>> edges;  // per region, `region` field local
+  std::vector<std::vector<std::uint32_t>> pieces;  // per region
+  std::vector<std::vector<BoundaryEdge>> edges;    // per region, `region` field local
 };
 
 /// A plane with a single piece (most of a curved surface): the piece is its
@@ -201,11 +202,12 @@ GroupResult build_group(std::span<const OutputPolygon> polys, const Cycles& cycl
     const std::uint32_t root = uf.find(m);
     if (region_of[root] == UINT32_MAX) {
       region_of[root] = static_cast<std::uint32_t>(out.regions.size());
-      out.regions.push_back({plane, UINT32_MAX, {}});
+      out.regions.push_back({plane, UINT32_MAX});
+      out.pieces.emplace_back();
       out.edges.emplace_back();
     }
     Region& r = out.regions[region_of[root]];
-    r.pieces.push_back(members[m]);
+    out.pieces[region_of[root]].push_back(members[m]);
     r.source = std::min(r.source, polys[members[m]].id);
   }
   for (std::size_t i = 0; i < dir.size(); ++i) {
@@ -286,6 +288,11 @@ Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles
   out.edges.resize(edge_count[groups]);
   out.edge_begin.resize(region_count[groups] + 1);
   out.edge_begin.back() = edge_count[groups];
+  // A group's pieces are its members, so its regions' piece lists fill
+  // piece_ids[group_begin[g] .. group_begin[g+1]).
+  out.piece_ids.resize(polys.size());
+  out.piece_begin.resize(region_count[groups] + 1);
+  out.piece_begin.back() = static_cast<std::uint32_t>(polys.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 64), [&](const auto& range) {
     std::vector<std::uint32_t> loop, scratch, slot;
     for (std::size_t g = range.begin(); g != range.end(); ++g) {
@@ -293,13 +300,18 @@ Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles
       if (single[g]) {
         const std::uint32_t p = order[group_begin[g]];
         piece_loop(polys[p], cycles[p], loop);  // checked in pass 1
-        out.regions[region] = {plane_of(g), polys[p].id, {p}};
+        out.regions[region] = {plane_of(g), polys[p].id};
+        out.piece_ids[group_begin[g]] = p;
+        out.piece_begin[region] = static_cast<std::uint32_t>(group_begin[g]);
         out.edge_begin[region] = base;
         write_single_loop(loop, region, base, out.edges.data() + base, scratch, slot);
         continue;
       }
       GroupResult& res = results[g];
+      auto piece = static_cast<std::uint32_t>(group_begin[g]);
       for (std::size_t r = 0; r < res.regions.size(); ++r, ++region) {
+        out.piece_begin[region] = piece;
+        for (const std::uint32_t p : res.pieces[r]) out.piece_ids[piece++] = p;
         out.edge_begin[region] = base;
         for (BoundaryEdge e : res.edges[r]) {
           e.region = region;

@@ -6,7 +6,9 @@
 // triangle is ever produced. Anything unexpected answers false and the caller
 // falls back to triangulating the region's pieces one by one.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 #include <queue>
 #include <span>
 
@@ -70,6 +72,23 @@ bool collect_loops(const Regions& regions, std::uint32_t region, std::vector<std
     loops.push_back(std::move(loop));
   }
   return true;
+}
+
+/// The region's loop when it has exactly three edges, all alive, forming one
+/// cycle: the loop collect_loops would return (starting at the first edge),
+/// without its allocations. Most regions of a curved result are such triangles.
+std::optional<std::array<std::uint32_t, 3>> single_triangle_loop(const Regions& regions, std::uint32_t region) {
+  const std::uint32_t first = regions.edge_begin[region], last = regions.edge_begin[region + 1];
+  if (last - first != 3) return std::nullopt;
+  std::array<std::uint32_t, 3> t{};
+  std::uint32_t e = first;
+  for (int i = 0; i < 3; ++i) {
+    if (e < first || e >= last || !regions.edges[e].alive) return std::nullopt;
+    t[static_cast<std::size_t>(i)] = regions.edges[e].from;
+    e = regions.edges[e].next;
+  }
+  if (e != first) return std::nullopt;
+  return t;
 }
 
 /// +1 for a counter-clockwise loop, -1 clockwise, 0 if undecidable here: the
@@ -244,15 +263,16 @@ bool triangulate_region(const Regions& regions, std::uint32_t region, const Outp
                         std::vector<std::array<std::uint32_t, 3>>& out) {
   const Plane& plane = regions.regions[region].plane;
   const Ctx k{verts, plane};
-  std::vector<std::vector<std::uint32_t>> loops;
-  if (!collect_loops(regions, region, loops)) return false;
   // Most regions of a curved surface are one triangle: no ear search needed.
-  if (loops.size() == 1 && loops[0].size() == 3) {
-    const auto& t = loops[0];
+  const auto emit_triangle = [&](const std::array<std::uint32_t, 3>& t) {
     if (k.orient(t[0], t[1], t[2]) <= 0) return false;
     out.push_back({t[2], t[0], t[1]});  // the rotation the ear clipper ends with
     return true;
-  }
+  };
+  if (const std::optional<std::array<std::uint32_t, 3>> t = single_triangle_loop(regions, region)) return emit_triangle(*t);
+  std::vector<std::vector<std::uint32_t>> loops;
+  if (!collect_loops(regions, region, loops)) return false;
+  if (loops.size() == 1 && loops[0].size() == 3) return emit_triangle({loops[0][0], loops[0][1], loops[0][2]});
   std::vector<std::uint32_t> outer;
   std::vector<std::vector<std::uint32_t>> holes;
   for (auto& loop : loops) {
