@@ -77,6 +77,10 @@ class ContactSearch {
     const bool splittable = items.size() > kLeaf && depth < kMaxDepth && cell.hi[axis] - cell.lo[axis] >= 2;
     const std::int64_t mid = cell.lo[axis] + (cell.hi[axis] - cell.lo[axis]) / 2;
     if (splittable) {
+      // One allocation per child instead of a doubling series: a child holds
+      // at most all of the cell's items, and this cell's list is freed below.
+      left.reserve(items.size());
+      right.reserve(items.size());
       for (const std::uint32_t i : items) {
         if (boxes_[i].lo[axis] < mid) left.push_back(i);
         if (boxes_[i].hi[axis] >= mid) right.push_back(i);
