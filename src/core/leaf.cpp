@@ -564,6 +564,12 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
   // `whole`: f is all of t (t's subdivision piece), uncut and untrimmed.
   const auto emit = [&](const SoupPolygon& t, const Polygon& f, bool in_front, bool in_back, bool whole) {
     if (in_front == in_back) return;
+    if (whole && t.splits == 0 && t.corners) {
+      // f is the whole input triangle: emitted unbuilt (soup.hpp), without a
+      // copy of its edges and vertices, like the early-outs' triangles.
+      out.push_back({Polygon{t.poly.support, {}, {}}, t.id, t.operand, in_front, true, 0, t.corners});
+      return;
+    }
     out.push_back({f, t.id, t.operand, in_front, whole, t.splits});
   };
   for (const SoupPolygon& t : pb.soup) {

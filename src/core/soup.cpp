@@ -14,7 +14,7 @@ void update_bounds(SoupPolygon& p) {
       hi[i] = std::max(hi[i], a[i]);
     }
   };
-  if (p.corners) {
+  if (unbuilt(p)) {
     // The approximation of a grid point (w = 1) is its exact coordinates.
     for (const IntPoint& c : *p.corners)
       add({static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z)});
@@ -38,14 +38,13 @@ SoupPolygon unbuilt_triangle(const std::array<IntPoint, 3>& c, std::uint32_t id,
 }
 
 void materialize(SoupPolygon& p) {
-  if (!p.corners) return;
+  if (!unbuilt(p)) return;
   const std::array<IntPoint, 3>& c = *p.corners;
   p.poly = *make_triangle(c[0], c[1], c[2]);
-  p.corners = nullptr;
 }
 
 bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const SoupPolygon& p) {
-  if (!p.corners) return line_clearly_misses(l, uv, p.poly);
+  if (!unbuilt(p)) return line_clearly_misses(l, uv, p.poly);
   std::array<std::array<double, 3>, 3> v;
   for (int i = 0; i < 3; ++i) {
     const IntPoint& c = (*p.corners)[i];
@@ -55,7 +54,7 @@ bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, con
 }
 
 const Polygon& built_polygon(const SoupPolygon& p, Polygon& scratch) {
-  if (!p.corners) return p.poly;
+  if (!unbuilt(p)) return p.poly;
   const std::array<IntPoint, 3>& c = *p.corners;
   assign_triangle(c[0], c[1], c[2], scratch);  // has area: it is a soup triangle
   return scratch;

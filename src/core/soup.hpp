@@ -13,9 +13,10 @@ namespace ember::core {
 /// transition vector is that operand's unit vector) and a global id that
 /// orders coincident polygons (Fig. 8: the lowest id emits an overlap).
 ///
-/// An input triangle that no split has cut yet is stored *unbuilt*: `corners`
-/// points at its grid corners (GridTriangles::corners[id], alive for the whole
-/// Boolean) and `poly` holds only its support plane, no edges or vertices.
+/// An input triangle that no split has cut yet is stored *unbuilt*: `poly`
+/// holds only its support plane, no edges or vertices, and `corners` points at
+/// its grid corners (GridTriangles::corners[id], alive for the whole Boolean;
+/// kept when it is built or cut, so that a leaf can emit it unbuilt again).
 /// Most triangles lie far from the other operands and leave the subdivision
 /// through an early-out without ever being clipped or traced; building their
 /// plane-based form (~500 bytes of edge planes and homogeneous vertices on
@@ -31,8 +32,11 @@ struct SoupPolygon {
   /// that many or more). The pieces of one triangle are the leaves of a binary
   /// tree of splits, so their shares 2^-splits sum to exactly 1.
   std::uint8_t splits = 0;
-  const std::array<IntPoint, 3>* corners = nullptr;  ///< set iff unbuilt
+  const std::array<IntPoint, 3>* corners = nullptr;  ///< its input triangle's grid corners
 };
+
+/// No edges and vertices yet: an uncut input triangle (see above).
+inline bool unbuilt(const SoupPolygon& p) { return p.poly.vertices.empty(); }
 using Soup = std::vector<SoupPolygon>;
 
 /// Recomputes the conservative box of a polygon from double approximations of

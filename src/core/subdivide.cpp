@@ -180,7 +180,7 @@ void split_range(Soup& soup, std::size_t begin, std::size_t end, int axis, std::
     }
     // An unbuilt triangle is sided by its integer corners (clip's exact
     // classification of them) and built only when the plane cuts it.
-    if (p.corners) {
+    if (unbuilt(p)) {
       int below = 0, above = 0;
       for (const IntPoint& c : *p.corners) {
         const std::int64_t x = axis == 0 ? c.x : (axis == 1 ? c.y : c.z);
@@ -208,7 +208,7 @@ void split_range(Soup& soup, std::size_t begin, std::size_t end, int axis, std::
       case ClipSide::Both: {
         // The parts take over the clip buffers; the old polygon's buffers
         // become the next clip's, so a split costs one allocation, not four.
-        SoupPolygon r{std::move(pos), p.id, p.operand, {}, {}, {}};
+        SoupPolygon r{std::move(pos), p.id, p.operand, {}, {}, 0, p.corners};
         pos = Polygon{};
         p.splits = r.splits = p.splits == 255 ? p.splits : static_cast<std::uint8_t>(p.splits + 1);
         std::swap(p.poly, neg);
@@ -265,7 +265,10 @@ bool emit_single_solid(Subproblem& pb, const SolveContext& ctx, const SoupSummar
   const bool in_front = ctx.inside(front), in_back = ctx.inside(back);
   if (in_front == in_back) return true;
   out.reserve(pb.soup.size());
-  for (SoupPolygon& p : pb.soup) out.push_back({std::move(p.poly), p.id, p.operand, in_front, true, p.splits, p.corners});
+  for (SoupPolygon& p : pb.soup) {
+    const std::array<IntPoint, 3>* corners = unbuilt(p) ? p.corners : nullptr;  // OutputPolygon: set iff unbuilt
+    out.push_back({std::move(p.poly), p.id, p.operand, in_front, true, p.splits, corners});
+  }
   return true;
 }
 
