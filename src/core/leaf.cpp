@@ -570,7 +570,8 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
       out.push_back({Polygon{t.poly.support, {}, {}}, t.id, t.operand, in_front, true, 0, t.corners});
       return;
     }
-    out.push_back({f, t.id, t.operand, in_front, whole, t.splits});
+    // The mesh stage needs a piece's support and vertices, not its edge planes.
+    out.push_back({Polygon{f.support, {}, f.vertices}, t.id, t.operand, in_front, whole, t.splits});
   };
   for (const SoupPolygon& t : pb.soup) {
     const std::size_t ti = static_cast<std::size_t>(&t - pb.soup.data());

@@ -13,10 +13,11 @@ namespace ember::core {
 
 /// A piece of an input polygon that lies on the result's surface.
 struct OutputPolygon {
-  /// Only the support plane when `corners` is set: an input triangle that an
-  /// early-out emitted unbuilt (soup.hpp), or that merge_whole_triangles put
-  /// back together. Its corners are grid points, which the mesh stage welds by
-  /// their coordinates; it builds edge planes only where a T-junction test needs them.
+  /// Support plane and vertices; no edge planes (the mesh stage decides
+  /// incidences on the vertices). Only the support plane when `corners` is
+  /// set: an input triangle that an early-out or a leaf emitted unbuilt
+  /// (soup.hpp), or that merge_whole_triangles put back together; its corners
+  /// are grid points, which the mesh stage welds by their coordinates.
   Polygon poly;
   std::uint32_t id = 0;       ///< source polygon (input triangle) id
   std::uint32_t operand = 0;

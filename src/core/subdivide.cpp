@@ -268,6 +268,7 @@ bool emit_single_solid(Subproblem& pb, const SolveContext& ctx, const SoupSummar
   for (SoupPolygon& p : pb.soup) {
     const std::array<IntPoint, 3>* corners = unbuilt(p) ? p.corners : nullptr;  // OutputPolygon: set iff unbuilt
     out.push_back({std::move(p.poly), p.id, p.operand, in_front, true, p.splits, corners});
+    out.back().poly.edges = {};  // the mesh stage needs no edge planes (solve.hpp)
   }
   return true;
 }

@@ -16,9 +16,8 @@
 // Candidates come from the rounded positions: rounding is correctly rounded
 // and hence monotone per coordinate, so a point exactly between two others
 // rounds into the box of their rounded positions (no epsilon needed). Each
-// candidate is then tested exactly: on the support plane and the edge plane,
-// and strictly inside the neighbouring edge planes (which cross the edge's
-// line exactly at its end points).
+// candidate is then tested exactly: on the support plane, collinear with the
+// edge's end points in the plane's projection, and strictly between them.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -50,41 +49,37 @@ double mean_edge_length(std::span<const OutputPolygon> polys, const OutputVertic
   return count ? sum / static_cast<double>(count) : 1.0;
 }
 
-/// Vertices strictly inside edge k of polygon op, ordered from its start.
-/// An unbuilt triangle's edge planes are built (into `scratch`) only when the
-/// search finds a candidate: most edges have none.
-void edge_interior_vertices(const OutputPolygon& op, std::span<const std::uint32_t> ids, std::size_t k,
-                            const OutputVertices& verts, const VertexIndex& index, Polygon& scratch,
-                            std::vector<std::uint32_t>& found) {
-  const std::size_t n = ids.size();
-  const std::uint32_t a = ids[k], b = ids[(k + 1) % n];
-  const Vec3d &ra = verts.rounded[a], &rb = verts.rounded[b];
-  const Polygon* poly = op.corners ? nullptr : &op.poly;
+/// Vertices strictly inside the edge from id a to id b of a polygon in
+/// `support`, ordered from a. Needs no edge planes (output polygons do not
+/// keep them): a candidate lies on the edge iff it is on the support plane,
+/// collinear with a and b in the plane's projection along its dominant axis
+/// (one-to-one on the plane), and strictly between them along an axis in
+/// which they differ. Candidates are rare, so the exact tests on the welded
+/// points cost little.
+void edge_interior_vertices(const Plane& support, std::uint32_t a, std::uint32_t b, const OutputVertices& verts,
+                            const VertexIndex& index, std::vector<std::uint32_t>& found) {
+  const Point &pa = verts.exact[a], &pb = verts.exact[b];
+  // Points on one line are ordered alike by any coordinate in which the end
+  // points differ: found on the first collinear candidate (most edges have none).
+  int axis = -1, dir = 0;
   found.clear();
-  index.for_each_near_segment(ra, rb, [&](std::uint32_t v) {
+  index.for_each_near_segment(verts.rounded[a], verts.rounded[b], [&](std::uint32_t v) {
     if (v == a || v == b) return;
-    if (!poly) {
-      const std::array<IntPoint, 3>& c = *op.corners;
-      assign_triangle(c[0], c[1], c[2], scratch);  // corners k, k+1 are ids k, k+1: same order
-      poly = &scratch;
-    }
-    const Plane& edge = poly->edges[k];
-    const Plane& before = poly->edges[(k + n - 1) % n];  // crosses the edge's line at a
-    const Plane& after = poly->edges[(k + 1) % n];       // crosses it at b
     const Point& x = verts.exact[v];
-    if (classify(x, poly->support) != 0 || classify(x, edge) != 0) return;
-    if (classify(x, before) < 0 && classify(x, after) < 0) found.push_back(v);
+    if (classify(x, support) != 0 || orient2d_dropped(pa, pb, x, dominant_axis(support)) != 0) return;
+    if (axis < 0) {
+      axis = 0;
+      while (axis < 2 && compare_coord(pa, pb, axis) == 0) ++axis;
+      dir = compare_coord(pa, pb, axis);  // a != b: not 0
+    }
+    if (compare_coord(pa, x, axis) == dir && compare_coord(x, pb, axis) == dir) found.push_back(v);
   });
   if (found.size() < 2) return;
   std::sort(found.begin(), found.end());
   found.erase(std::unique(found.begin(), found.end()), found.end());
-  // Points on one line are ordered alike by any coordinate in which the end points differ.
-  int axis = 0;
-  while (axis < 2 && compare_coord(verts.exact[a], verts.exact[b], axis) == 0) ++axis;
-  const bool ascending = compare_coord(verts.exact[a], verts.exact[b], axis) < 0;
   std::sort(found.begin(), found.end(), [&](std::uint32_t x, std::uint32_t y) {
     const int c = compare_coord(verts.exact[x], verts.exact[y], axis);
-    return ascending ? c < 0 : c > 0;
+    return dir < 0 ? c < 0 : c > 0;
   });
 }
 
@@ -145,12 +140,12 @@ Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const Out
   std::vector<std::vector<std::uint32_t>> inside(runs);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs, 256), [&](const auto& r) {
     std::vector<std::uint32_t> found;
-    Polygon scratch;
     for (std::size_t run = r.begin(); run != r.end(); ++run) {
       const std::uint32_t c = pairs.corner[pairs.run_begin[run]], p = pairs.poly_of[c];
       const auto ids = corners[p];
-      if (ids[c - corners.offsets[p]] == ids[(c - corners.offsets[p] + 1) % ids.size()]) continue;
-      edge_interior_vertices(polys[p], ids, c - corners.offsets[p], verts, index, scratch, found);
+      const std::uint32_t a = ids[c - corners.offsets[p]], b = ids[(c - corners.offsets[p] + 1) % ids.size()];
+      if (a == b) continue;
+      edge_interior_vertices(polys[p].poly.support, a, b, verts, index, found);
       if (!found.empty()) inside[run] = found;
     }
   });
