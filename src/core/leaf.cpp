@@ -173,10 +173,10 @@ struct LeafScratch {
 /// True if t lies in a face plane of the box: then one side of t is outside
 /// the box, where the soup does not show which polygons touch t.
 bool on_box_face(const SoupPolygon& t, const Box& box) {
-  const Plane& S = t.poly.support;
+  const Plane& S = t.poly->support;
   for (int a = 0; a < 3; ++a) {
     if (S.normal((a + 1) % 3).sign() != 0 || S.normal((a + 2) % 3).sign() != 0) continue;
-    const Point& v = t.poly.vertices.front();
+    const Point& v = t.poly->vertices.front();
     return classify(v, axis_plane(a, box.lo[a])) == 0 || classify(v, axis_plane(a, box.hi[a])) == 0;
   }
   return false;
@@ -219,8 +219,8 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
     bool front = false, back = false;
     // Coplanar first: one plane comparison instead of exact zero tests of
     // every vertex (stacks are full of them).
-    if (direction[i] != t_direction || !coplanar(t.poly.support, o.poly.support)) {
-      if (!touches_plane(o.poly, t.poly.support, sc.other_signs)) continue;
+    if (direction[i] != t_direction || !coplanar(t.poly->support, o.poly->support)) {
+      if (!touches_plane(*o.poly, t.poly->support, sc.other_signs)) continue;
       for (const std::int8_t v : sc.other_signs) {
         front |= v > 0;
         back |= v < 0;
@@ -246,7 +246,7 @@ bool disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext&
                      std::span<const std::uint32_t> parallel, std::size_t at, LeafScratch& sc,
                      std::vector<Piece>& pieces) {
   pieces.resize(1);
-  pieces[0].poly = t.poly;  // reuses the capacity of the previous polygon's first piece
+  pieces[0].poly = *t.poly;  // reuses the capacity of the previous polygon's first piece
   std::vector<Piece>& next = sc.next;
   Polygon neg, pos;
   // Nearest lower ids first: in a stack, t's predecessors (its own face's
@@ -260,16 +260,16 @@ bool disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext&
     const SoupPolygon& o = soup[parallel[k]];
     if (o.id >= t.id || box_disjoint(o, lo, hi)) continue;
     if (o.operand == t.operand && ctx.solid[t.operand]) continue;  // NSI: no overlap
-    if (!coplanar(t.poly.support, o.poly.support)) continue;
+    if (!coplanar(t.poly->support, o.poly->support)) continue;
     next.clear();
     cut = false;
     for (Piece& p : pieces) {
-      if (!coplanar_overlap(p.poly, o.poly)) {
+      if (!coplanar_overlap(p.poly, *o.poly)) {
         next.push_back(std::move(p));
         continue;
       }
       // The parts outside o stay; the part inside o is o's to emit.
-      for (const Plane& e : o.poly.edges) {
+      for (const Plane& e : o.poly->edges) {
         if (clip(p.poly, e, neg, pos) != ClipSide::Both) continue;
         next.push_back({pos});
         std::swap(p.poly, neg);
@@ -311,12 +311,12 @@ void refine(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, boo
       if (o.id < t.id || (ctx.closed[o.operand] && !face)) continue;
       const std::size_t n = pieces.size();
       for (std::size_t i = 0; i < n; ++i)
-        if (coplanar_overlap(pieces[i].poly, o.poly)) cut_by_coplanar(pieces, i, o.poly);
+        if (coplanar_overlap(pieces[i].poly, *o.poly)) cut_by_coplanar(pieces, i, *o.poly);
     } else {
       sc.other_signs.assign(sc.related_signs.begin() + at, sc.related_signs.begin() + end);
       const std::size_t n = pieces.size();
       for (std::size_t i = 0; i < n; ++i)
-        cut_by_transverse(pieces, i, t.poly.support, o.poly, sc.other_signs, sc.signs, sc.cons);
+        cut_by_transverse(pieces, i, t.poly->support, *o.poly, sc.other_signs, sc.signs, sc.cons);
     }
   }
 }
@@ -325,10 +325,10 @@ void refine(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, boo
 /// k onto the piece's interior point x on t's plane. Adds crossings to w and
 /// collects in `delta` the transition at x of every polygon containing x
 /// (t and coplanar overlapping polygons), signed relative to t's orientation.
-/// `side` is the side of t's plane the path arrives from.
-bool trace_onto(const Soup& soup, const SoupPolygon& t, const Dyadic& start, int k, const AxisPoint& x, Wnv& w,
-                Wnv& delta, int& side, std::uint32_t skip) {
-  const Plane& S = t.poly.support;
+/// `side` is the side of t's plane S the path arrives from. (t may be unbuilt:
+/// the proof classifies in the root soup.)
+bool trace_onto(const Soup& soup, const SoupPolygon& t, const Plane& S, const Dyadic& start, int k,
+                const AxisPoint& x, Wnv& w, Wnv& delta, int& side, std::uint32_t skip) {
   side = classify(to_point(start), S);
   if (side == 0) return false;
   const Plane pa = dyadic_axis_plane(start, k);
@@ -377,16 +377,16 @@ std::uint64_t mix(std::uint64_t x) {
 
 /// Where the axis-k line through the dyadic target (u, v) meets t's plane,
 /// if that point lies strictly inside the piece f.
-bool interior_point(const SoupPolygon& t, const Polygon& f, const Dyadic& target, int k, AxisPoint& x) {
-  return meet(axis_line(target, k), t.poly.support, x) && locate(f, x) < 0;
+bool interior_point(const Polygon& f, const Dyadic& target, int k, AxisPoint& x) {
+  return meet(axis_line(target, k), f.support, x) && locate(f, x) < 0;  // a piece of t has t's plane
 }
 
 /// Traces from the leaf's reference point to the piece through the dyadic
 /// target (u, v) on the piece's dominant axis k, whose line meets the piece
 /// strictly inside at x (interior_point). False if the path meets something
 /// degenerately.
-bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Dyadic& target, int k, const AxisPoint& x,
-                      bool i_first, bool solid, Wnv& w, Wnv& delta, Wnv& w_front, Wnv& w_back) {
+bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Plane& S, const Dyadic& target, int k,
+                      const AxisPoint& x, bool i_first, bool solid, Wnv& w, Wnv& delta, Wnv& w_front, Wnv& w_back) {
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   const std::array<int, 3> order = i_first ? std::array<int, 3>{i, j, k} : std::array<int, 3>{j, i, k};
   w = pb.ref_w;
@@ -395,7 +395,7 @@ bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Dyadic& 
   // 0 in front of t and 1 behind: they need not be traced at all.
   const std::uint32_t skip = solid ? t.operand : kNoSkip;
   if (!trace_path(pb.soup, pb.ref, target, order, w, skip)) return false;
-  if (!trace_onto(pb.soup, t, target, k, x, w, delta, side, skip)) return false;
+  if (!trace_onto(pb.soup, t, S, target, k, x, w, delta, side, skip)) return false;
   w_front = w;
   w_back = w;
   for (std::size_t o = 0; o < w.size(); ++o) {
@@ -418,7 +418,7 @@ bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Dyadic& 
 /// slivers far thinner than a double can resolve at these coordinates.
 bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f, bool solid, std::uint64_t seed,
                     Wnv& w_front, Wnv& w_back, LeafScratch& scratch) {
-  const Plane& S = t.poly.support;
+  const Plane& S = f.support;  // t's plane (t may be unbuilt: the proof's root soup)
   const int k = dominant_axis(S);
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   Wnv& w = scratch.w;
@@ -442,8 +442,8 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
       target.num[i] = static_cast<__int128>(std::nearbyint(ci * scale));
       target.num[j] = static_cast<__int128>(std::nearbyint(cj * scale));
       AxisPoint x;
-      if (!interior_point(t, f, target, k, x)) continue;
-      if (classify_through(pb, t, target, k, x, attempt % 2 == 0, solid, w, delta, w_front, w_back)) return true;
+      if (!interior_point(f, target, k, x)) continue;
+      if (classify_through(pb, t, S, target, k, x, attempt % 2 == 0, solid, w, delta, w_front, w_back)) return true;
       break;  // inside but the path is degenerate: next guess
     }
   }
@@ -465,9 +465,9 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
         target.num[axis] = q;
       }
       AxisPoint x;
-      if (!interior_point(t, f, target, k, x)) continue;
+      if (!interior_point(f, target, k, x)) continue;
       for (const bool i_first : {true, false})
-        if (classify_through(pb, t, target, k, x, i_first, solid, w, delta, w_front, w_back)) return true;
+        if (classify_through(pb, t, S, target, k, x, i_first, solid, w, delta, w_front, w_back)) return true;
     }
   }
   return false;
@@ -538,7 +538,7 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
   const std::size_t size = pb.soup.size();
   std::vector<std::pair<std::array<std::int64_t, 3>, std::uint32_t>> keyed(size);
   for (std::size_t i = 0; i < size; ++i)
-    keyed[i] = {direction_key(pb.soup[i].poly.support), static_cast<std::uint32_t>(i)};
+    keyed[i] = {direction_key(pb.soup[i].poly->support), static_cast<std::uint32_t>(i)};
   std::sort(keyed.begin(), keyed.end());
   std::vector<std::uint32_t> order(size), class_begin(size), class_end(size), position(size);
   for (std::size_t i = 0; i < size;) {
@@ -567,7 +567,7 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
     if (whole && t.splits == 0 && t.corners) {
       // f is the whole input triangle: emitted unbuilt (soup.hpp), without a
       // copy of its edges and vertices, like the early-outs' triangles.
-      out.push_back({Polygon{t.poly.support, {}, {}}, t.id, t.operand, in_front, true, 0, t.corners});
+      out.push_back({Polygon{t.poly->support, {}, {}}, t.id, t.operand, in_front, true, 0, t.corners});
       return;
     }
     // The mesh stage needs a piece's support and vertices, not its edge planes.

@@ -19,7 +19,7 @@ void update_bounds(SoupPolygon& p) {
     for (const IntPoint& c : *p.corners)
       add({static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z)});
   } else {
-    for (const Point& v : p.poly.vertices) add(approx(v));
+    for (const Point& v : p.poly->vertices) add(approx(v));
   }
   for (int i = 0; i < 3; ++i) {
     p.lo[i] = lo[i] - kMargin;
@@ -29,7 +29,6 @@ void update_bounds(SoupPolygon& p) {
 
 SoupPolygon unbuilt_triangle(const std::array<IntPoint, 3>& c, std::uint32_t id, std::uint32_t operand) {
   SoupPolygon p;
-  p.poly.support = *supporting_plane(c[0], c[1], c[2]);  // the caller checked the area
   p.corners = &c;
   p.id = id;
   p.operand = operand;
@@ -40,21 +39,28 @@ SoupPolygon unbuilt_triangle(const std::array<IntPoint, 3>& c, std::uint32_t id,
 void materialize(SoupPolygon& p) {
   if (!unbuilt(p)) return;
   const std::array<IntPoint, 3>& c = *p.corners;
-  p.poly = *make_triangle(c[0], c[1], c[2]);
+  p.poly = std::make_unique<Polygon>();
+  assign_triangle(c[0], c[1], c[2], *p.poly);  // a soup triangle has area
 }
 
 bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const SoupPolygon& p) {
-  if (!unbuilt(p)) return line_clearly_misses(l, uv, p.poly);
+  if (!unbuilt(p)) return line_clearly_misses(l, uv, *p.poly);
+  const std::array<IntPoint, 3>& c = *p.corners;
+  // The support's normal is the grid normal (p1 - p0) x (p2 - p0), exact in int64.
+  const std::int64_t n = grid_normal(c[0], c[1], c[2])[static_cast<std::size_t>(l.axis)];
   std::array<std::array<double, 3>, 3> v;
-  for (int i = 0; i < 3; ++i) {
-    const IntPoint& c = (*p.corners)[i];
-    v[i] = {static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z)};
-  }
-  return line_clearly_misses(l, uv, p.poly.support, 3, [&](std::size_t i) -> const std::array<double, 3>& { return v[i]; });
+  for (int i = 0; i < 3; ++i) v[i] = {static_cast<double>(c[i].x), static_cast<double>(c[i].y), static_cast<double>(c[i].z)};
+  return line_clearly_misses(l, uv, (n > 0) - (n < 0), 3, [&](std::size_t i) -> const std::array<double, 3>& { return v[i]; });
+}
+
+Plane support_of(const SoupPolygon& p) {
+  if (!unbuilt(p)) return p.poly->support;
+  const std::array<IntPoint, 3>& c = *p.corners;
+  return *supporting_plane(c[0], c[1], c[2]);  // a soup triangle has area
 }
 
 const Polygon& built_polygon(const SoupPolygon& p, Polygon& scratch) {
-  if (!unbuilt(p)) return p.poly;
+  if (!unbuilt(p)) return *p.poly;
   const std::array<IntPoint, 3>& c = *p.corners;
   assign_triangle(c[0], c[1], c[2], scratch);  // has area: it is a soup triangle
   return scratch;

@@ -3,6 +3,7 @@
 // integer box, dyadic reference points and winding-number vectors.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "ember/geometry.hpp"
@@ -13,10 +14,11 @@ namespace ember::core {
 /// transition vector is that operand's unit vector) and a global id that
 /// orders coincident polygons (Fig. 8: the lowest id emits an overlap).
 ///
-/// An input triangle that no split has cut yet is stored *unbuilt*: `poly`
-/// holds only its support plane, no edges or vertices, and `corners` points at
-/// its grid corners (GridTriangles::corners[id], alive for the whole Boolean;
-/// kept when it is built or cut, so that a leaf can emit it unbuilt again).
+/// An input triangle that no split has cut yet is stored *unbuilt*: `poly` is
+/// null and `corners` points at its grid corners (GridTriangles::corners[id],
+/// alive for the whole Boolean; kept when it is built or cut, so that a leaf
+/// can emit it unbuilt again). The entry itself is 80 bytes, the polygon
+/// behind `poly` only exists where it is needed.
 /// Most triangles lie far from the other operands and leave the subdivision
 /// through an early-out without ever being clipped or traced; building their
 /// plane-based form (~500 bytes of edge planes and homogeneous vertices on
@@ -24,7 +26,7 @@ namespace ember::core {
 /// materialize() builds it where it is needed: before a clip that cuts the
 /// triangle, at a leaf, and for an exact trace test.
 struct SoupPolygon {
-  Polygon poly;
+  std::unique_ptr<Polygon> poly;  ///< null while unbuilt
   std::uint32_t id = 0;       ///< input triangle index, unique
   std::uint32_t operand = 0;  ///< which operand's surface this is
   std::array<double, 3> lo{}, hi{};  ///< conservative bounding box (grid units)
@@ -35,8 +37,8 @@ struct SoupPolygon {
   const std::array<IntPoint, 3>* corners = nullptr;  ///< its input triangle's grid corners
 };
 
-/// No edges and vertices yet: an uncut input triangle (see above).
-inline bool unbuilt(const SoupPolygon& p) { return p.poly.vertices.empty(); }
+/// Not built yet: an uncut input triangle (see above).
+inline bool unbuilt(const SoupPolygon& p) { return !p.poly; }
 using Soup = std::vector<SoupPolygon>;
 
 /// Recomputes the conservative box of a polygon from double approximations of
@@ -46,7 +48,7 @@ using Soup = std::vector<SoupPolygon>;
 void update_bounds(SoupPolygon& p);
 
 /// The soup polygon for input triangle `c` (non-degenerate), unbuilt: its
-/// support plane, its box, and a pointer to `c`, which must outlive it.
+/// box and a pointer to `c`, which must outlive it.
 SoupPolygon unbuilt_triangle(const std::array<IntPoint, 3>& c, std::uint32_t id, std::uint32_t operand);
 
 /// Builds an unbuilt triangle's edges and vertices (make_triangle of its
@@ -58,7 +60,10 @@ void materialize(SoupPolygon& p);
 /// unbuilt triangles a trace passes near stay unbuilt.
 bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const SoupPolygon& p);
 
-/// p's polygon with edges and vertices: p.poly itself, or, for an unbuilt
+/// The support plane of a polygon, built or not.
+Plane support_of(const SoupPolygon& p);
+
+/// p's polygon with edges and vertices: *p.poly, or, for an unbuilt
 /// triangle, `scratch` filled with it (its buffers are reused across calls).
 const Polygon& built_polygon(const SoupPolygon& p, Polygon& scratch);
 

@@ -197,7 +197,7 @@ void split_range(Soup& soup, std::size_t begin, std::size_t end, int axis, std::
       }
       materialize(p);
     }
-    switch (clip(p.poly, plane, neg, pos)) {
+    switch (clip(*p.poly, plane, neg, pos)) {
       case ClipSide::Negative:
       case ClipSide::On:  // polygons in the plane go to the lower child only
         left.push_back(std::move(p));
@@ -208,10 +208,10 @@ void split_range(Soup& soup, std::size_t begin, std::size_t end, int axis, std::
       case ClipSide::Both: {
         // The parts take over the clip buffers; the old polygon's buffers
         // become the next clip's, so a split costs one allocation, not four.
-        SoupPolygon r{std::move(pos), p.id, p.operand, {}, {}, 0, p.corners};
+        SoupPolygon r{std::make_unique<Polygon>(std::move(pos)), p.id, p.operand, {}, {}, 0, p.corners};
         pos = Polygon{};
         p.splits = r.splits = p.splits == 255 ? p.splits : static_cast<std::uint8_t>(p.splits + 1);
-        std::swap(p.poly, neg);
+        std::swap(*p.poly, neg);
         update_bounds(p);
         update_bounds(r);
         left.push_back(std::move(p));
@@ -266,8 +266,11 @@ bool emit_single_solid(Subproblem& pb, const SolveContext& ctx, const SoupSummar
   if (in_front == in_back) return true;
   out.reserve(pb.soup.size());
   for (SoupPolygon& p : pb.soup) {
-    const std::array<IntPoint, 3>* corners = unbuilt(p) ? p.corners : nullptr;  // OutputPolygon: set iff unbuilt
-    out.push_back({std::move(p.poly), p.id, p.operand, in_front, true, p.splits, corners});
+    if (unbuilt(p)) {  // OutputPolygon: support plane and corners
+      out.push_back({Polygon{support_of(p), {}, {}}, p.id, p.operand, in_front, true, p.splits, p.corners});
+      continue;
+    }
+    out.push_back({std::move(*p.poly), p.id, p.operand, in_front, true, p.splits, nullptr});
     out.back().poly.edges = {};  // the mesh stage needs no edge planes (solve.hpp)
   }
   return true;

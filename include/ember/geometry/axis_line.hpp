@@ -118,11 +118,11 @@ inline std::array<double, 2> line_point_approx(const AxisLine& l) {
 /// subtraction rounding). The margin is twice that, plus 2^-36 because D and
 /// E are themselves computed (each within 2^-19 of the true lengths).
 /// `uv` = line_point_approx(l), computed once per line by the caller.
-/// `vertex(i)` gives vertex i's approximation (within those 8 ulps; exact is fine).
+/// `na` is the sign of the polygon's normal along the line, `vertex(i)` gives
+/// vertex i's approximation (within those 8 ulps; exact is fine).
 template <typename VertexApprox>
-inline bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const Plane& support,
-                                std::size_t n, VertexApprox&& vertex) {
-  const int na = support.normal(l.axis).sign();
+inline bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, int na, std::size_t n,
+                                VertexApprox&& vertex) {
   if (na == 0) return false;
   const int u = (l.axis + 1) % 3, v = (l.axis + 2) % 3;
   const double U = uv[0], V = uv[1];
@@ -139,7 +139,7 @@ inline bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& 
 }
 
 inline bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const Polygon& poly) {
-  return line_clearly_misses(l, uv, poly.support, poly.vertices.size(),
+  return line_clearly_misses(l, uv, poly.support.normal(l.axis).sign(), poly.vertices.size(),
                              [&](std::size_t i) -> const std::array<double, 3>& { return poly.vertices[i].f; });
 }
 
