@@ -56,7 +56,7 @@ Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer&
       const std::size_t n = core::corner_count(p);
       for (std::size_t k = 0; k < n; ++k) {
         const std::size_t at = p.flip ? n - 1 - k : k;
-        const Vec3d x = p.corners ? q.dequantize((*p.corners)[at]) : q.dequantize(p.poly.vertices[at]);
+        const Vec3d x = core::unbuilt(p) ? q.dequantize((*p.corners)[at]) : q.dequantize(p.vertices[at]);
         rounded[offset[i] + k] = {x.x + 0.0, x.y + 0.0, x.z + 0.0};  // -0.0 -> +0.0 so equal points weld
       }
     }
@@ -220,8 +220,10 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     result.stats.proof_ms = ms_between(setup_done, proved);
     report(options, "solve", 0.2);
     arena.execute([&] {
-      polys = core::solve(std::move(root), ctx);
-      result.stats.merged_triangles = core::merge_whole_triangles(polys, grid.corners);
+      core::SolveOutput solved = core::solve(std::move(root), ctx);
+      polys = std::move(solved.polys);
+      result.stats.merged_triangles = core::merge_whole_triangles(polys);
+      core::expand_path_pieces(polys, solved.paths);
     });
   }
   const auto solved = std::chrono::steady_clock::now();

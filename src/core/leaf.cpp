@@ -564,14 +564,21 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
   // `whole`: f is all of t (t's subdivision piece), uncut and untrimmed.
   const auto emit = [&](const SoupPolygon& t, const Polygon& f, bool in_front, bool in_back, bool whole) {
     if (in_front == in_back) return;
-    if (whole && t.splits == 0 && t.corners) {
-      // f is the whole input triangle: emitted unbuilt (soup.hpp), without a
-      // copy of its edges and vertices, like the early-outs' triangles.
-      out.push_back({Polygon{t.poly->support, {}, {}}, t.id, t.operand, in_front, true, 0, t.corners});
+    if (whole) {
+      // f is t's whole subdivision piece: emitted without its vertices
+      // (unbuilt or by path, solve.hpp), like the early-outs' pieces.
+      out.push_back(whole_piece_output(t, in_front));
       return;
     }
-    // The mesh stage needs a piece's support and vertices, not its edge planes.
-    out.push_back({Polygon{f.support, {}, f.vertices}, t.id, t.operand, in_front, whole, t.splits});
+    // The mesh stage needs a cut piece's vertices, not its edge planes.
+    OutputPolygon piece;
+    piece.vertices = f.vertices;
+    piece.corners = t.corners;
+    piece.id = t.id;
+    piece.operand = t.operand;
+    piece.flip = in_front;
+    piece.splits = t.splits;
+    out.push_back(std::move(piece));
   };
   for (const SoupPolygon& t : pb.soup) {
     const std::size_t ti = static_cast<std::size_t>(&t - pb.soup.data());

@@ -3,6 +3,7 @@
 // propagation (Section 4.2) down to leaves that resolve intersections with
 // polygon-local BSPs (4.3) and classify pieces by segment tracing (4.4).
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -11,27 +12,54 @@
 
 namespace ember::core {
 
-/// A piece of an input polygon that lies on the result's surface.
+/// The splits that made a subproblem's box, as a chain from the subproblem
+/// up to the root (null: the root's box). Shared by a subproblem's children,
+/// immutable, so that an output piece can name its box by its chunk's path.
+struct SplitStep {
+  std::shared_ptr<const SplitStep> parent;
+  std::int64_t position = 0;
+  int axis = 0;
+  bool upper = false;  ///< the subproblem lies above the split plane
+};
+using SplitPath = std::shared_ptr<const SplitStep>;
+
+/// A piece of an input triangle that lies on the result's surface, in one of
+/// three forms (48 bytes; most output pieces are the first two):
+///  * unbuilt: the whole input triangle (`corners`), emitted by an early-out
+///    or a leaf that did not cut it, or put back together by
+///    merge_whole_triangles;
+///  * by path (`path` set): the triangle's whole subdivision piece in the
+///    box that emitted it, i.e. the triangle clipped by that box's splits in
+///    their order (expand_path_pieces rebuilds it exactly). Most such pieces
+///    merge back into whole triangles, so their vertices are never stored;
+///  * explicit: the vertices of a piece a leaf cut or trimmed.
+/// The support plane is always the triangle's (support_of).
 struct OutputPolygon {
-  /// Support plane and vertices; no edge planes (the mesh stage decides
-  /// incidences on the vertices). Only the support plane when `corners` is
-  /// set: an input triangle that an early-out or a leaf emitted unbuilt
-  /// (soup.hpp), or that merge_whole_triangles put back together; its corners
-  /// are grid points, which the mesh stage welds by their coordinates.
-  Polygon poly;
+  PolygonBuffer<Point> vertices;  ///< explicit corners (counter-clockwise around the support); else empty
+  const std::array<IntPoint, 3>* corners = nullptr;  ///< the source triangle's grid corners (GridTriangles::corners[id])
   std::uint32_t id = 0;       ///< source polygon (input triangle) id
   std::uint32_t operand = 0;
+  /// By path: an index into the solve's paths (SolveOutput); kNoPath otherwise.
+  std::uint32_t path = kNoPath;
+  /// How many subdivision splits made the piece (SoupPolygon::splits).
+  std::uint8_t splits = 0;
   bool flip = false;          ///< emit with reversed orientation (in-out transition)
   /// The polygon is the whole subdivision piece its source triangle had in
-  /// the box that emitted it (no leaf cut or trimmed it), and that piece was
-  /// made by `splits` subdivision splits (SoupPolygon::splits).
+  /// the box that emitted it (no leaf cut or trimmed it).
   bool whole_piece = false;
-  std::uint8_t splits = 0;
-  const std::array<IntPoint, 3>* corners = nullptr;  ///< set iff unbuilt (GridTriangles::corners[id])
+
+  static constexpr std::uint32_t kNoPath = UINT32_MAX;
 };
 
-/// How many corners p has (3 for an unbuilt triangle).
-inline std::size_t corner_count(const OutputPolygon& p) { return p.corners ? 3 : p.poly.vertices.size(); }
+/// The whole input triangle, without stored vertices.
+inline bool unbuilt(const OutputPolygon& p) { return p.vertices.empty() && p.path == OutputPolygon::kNoPath; }
+/// How many corners p has (3 for an unbuilt triangle; a path piece must be expanded first).
+inline std::size_t corner_count(const OutputPolygon& p) { return unbuilt(p) ? 3 : p.vertices.size(); }
+/// The support plane of p: its input triangle's.
+inline Plane support_of(const OutputPolygon& p) {
+  const std::array<IntPoint, 3>& c = *p.corners;
+  return *supporting_plane(c[0], c[1], c[2]);  // an output triangle has area
+}
 
 struct SolveContext {
   std::size_t operands = 0;
@@ -62,6 +90,7 @@ struct SolveContext {
 /// reference point strictly inside the box with its winding-number vector.
 struct Subproblem {
   Box box;
+  SplitPath path;  ///< the splits that made `box` (null at the root)
   Soup soup;
   Dyadic ref;
   Wnv ref_w;
@@ -73,9 +102,15 @@ struct Subproblem {
 /// subproblem keep the reference point's winding number.
 bool indicator_constant(const Subproblem& problem, const SolveContext& ctx);
 
-/// Solves a subproblem; output polygons come in a deterministic order that
-/// does not depend on scheduling.
-std::vector<OutputPolygon> solve(Subproblem&& problem, const SolveContext& ctx);
+/// What solve() emits: output polygons in a deterministic order that does not
+/// depend on scheduling, and the paths their path pieces refer to.
+struct SolveOutput {
+  std::vector<OutputPolygon> polys;
+  std::vector<SplitPath> paths;
+};
+
+/// Solves a subproblem.
+SolveOutput solve(Subproblem&& problem, const SolveContext& ctx);
 
 /// Winding-number vectors just in front of and behind polygon t of pb's soup
 /// (the whole polygon, which must not be crossed or overlapped by any other
@@ -83,7 +118,12 @@ std::vector<OutputPolygon> solve(Subproblem&& problem, const SolveContext& ctx);
 /// path was found.
 bool classify_polygon(const Subproblem& problem, const SoupPolygon& t, Wnv& w_front, Wnv& w_back);
 
-/// Leaf computation (exposed for tests).
+/// The output form of soup polygon p, a whole subdivision piece: unbuilt if no
+/// split cut its triangle, else by path (path 0: the emitting subproblem's,
+/// which solve() numbers).
+OutputPolygon whole_piece_output(const SoupPolygon& p, bool flip);
+
+/// Leaf computation (exposed for tests). Path pieces carry path 0.
 void solve_leaf(const Subproblem& problem, const SolveContext& ctx, std::vector<OutputPolygon>& out);
 
 }  // namespace ember::core

@@ -250,6 +250,22 @@ void split_soup(Soup&& soup, int axis, std::int64_t position, Soup& left, Soup& 
   }
 }
 
+}  // namespace
+
+OutputPolygon whole_piece_output(const SoupPolygon& p, bool flip) {
+  OutputPolygon out;
+  out.corners = p.corners;
+  out.id = p.id;
+  out.operand = p.operand;
+  out.flip = flip;
+  out.whole_piece = true;
+  out.splits = p.splits;
+  if (p.splits > 0) out.path = 0;  // the subproblem's own path (solve() numbers them)
+  return out;
+}
+
+namespace {
+
 /// Fig. 11 with a solid operand: if every polygon belongs to one solid
 /// operand o, each has w_o = 0 in front and 1 behind, and all other winding
 /// numbers equal the reference point's (nothing else is in the box), so all
@@ -265,14 +281,7 @@ bool emit_single_solid(Subproblem& pb, const SolveContext& ctx, const SoupSummar
   const bool in_front = ctx.inside(front), in_back = ctx.inside(back);
   if (in_front == in_back) return true;
   out.reserve(pb.soup.size());
-  for (SoupPolygon& p : pb.soup) {
-    if (unbuilt(p)) {  // OutputPolygon: support plane and corners
-      out.push_back({Polygon{support_of(p), {}, {}}, p.id, p.operand, in_front, true, p.splits, p.corners});
-      continue;
-    }
-    out.push_back({std::move(*p.poly), p.id, p.operand, in_front, true, p.splits, nullptr});
-    out.back().poly.edges = {};  // the mesh stage needs no edge planes (solve.hpp)
-  }
+  for (const SoupPolygon& p : pb.soup) out.push_back(whole_piece_output(p, in_front));
   return true;
 }
 
@@ -303,8 +312,13 @@ namespace {
 
 /// Output chunks in deterministic order: each leaf (or single-solid box)
 /// fills one chunk, and parents concatenate their children's chunk lists, so
-/// a polygon moves once (when flattened), not once per level.
-using OutputChunks = std::vector<std::vector<OutputPolygon>>;
+/// a polygon moves once (when flattened), not once per level. A chunk keeps
+/// the path of the box that emitted it, for its path pieces.
+struct OutputChunk {
+  SplitPath path;
+  std::vector<OutputPolygon> polys;
+};
+using OutputChunks = std::vector<OutputChunk>;
 
 void solve_into(Subproblem&& pb, const SolveContext& ctx, OutputChunks& chunks) {
   if (pb.soup.empty()) return;
@@ -312,7 +326,7 @@ void solve_into(Subproblem&& pb, const SolveContext& ctx, OutputChunks& chunks) 
   if (indicator_constant(pb, ctx, summary.present)) return;
   std::vector<OutputPolygon> out;
   if (emit_single_solid(pb, ctx, summary, out)) {
-    if (!out.empty()) chunks.push_back(std::move(out));
+    if (!out.empty()) chunks.push_back({pb.path, std::move(out)});
     return;
   }
   std::int64_t position = 0;
@@ -329,13 +343,15 @@ void solve_into(Subproblem&& pb, const SolveContext& ctx, OutputChunks& chunks) 
   if (axis < 0) {
     for (SoupPolygon& p : pb.soup) materialize(p);  // a leaf works on whole plane-based polygons
     solve_leaf(pb, ctx, out);
-    if (!out.empty()) chunks.push_back(std::move(out));
+    if (!out.empty()) chunks.push_back({pb.path, std::move(out)});
     return;
   }
   Subproblem lower, upper;
   lower.box = upper.box = pb.box;
   lower.box.hi[axis] = position;
   upper.box.lo[axis] = position;
+  lower.path = std::make_shared<const SplitStep>(SplitStep{pb.path, position, axis, false});
+  upper.path = std::make_shared<const SplitStep>(SplitStep{pb.path, position, axis, true});
   // The reference point is strictly inside exactly one child (its coordinates
   // are never integers); the other child gets a new one.
   const bool ref_below = compare(pb.ref, axis, position) < 0;
@@ -359,14 +375,22 @@ void solve_into(Subproblem&& pb, const SolveContext& ctx, OutputChunks& chunks) 
 
 }  // namespace
 
-std::vector<OutputPolygon> solve(Subproblem&& pb, const SolveContext& ctx) {
+SolveOutput solve(Subproblem&& pb, const SolveContext& ctx) {
   OutputChunks chunks;
   solve_into(std::move(pb), ctx, chunks);
   std::size_t total = 0;
-  for (const auto& c : chunks) total += c.size();
-  std::vector<OutputPolygon> out;
-  out.reserve(total);
-  for (auto& c : chunks) out.insert(out.end(), std::make_move_iterator(c.begin()), std::make_move_iterator(c.end()));
+  for (const auto& c : chunks) total += c.polys.size();
+  SolveOutput out;
+  out.polys.reserve(total);
+  out.paths.reserve(chunks.size());
+  for (auto& c : chunks) {
+    // Path pieces name their chunk's path (they carry 0 until now).
+    const auto k = static_cast<std::uint32_t>(out.paths.size());
+    for (OutputPolygon& p : c.polys)
+      if (p.path != OutputPolygon::kNoPath) p.path = k;
+    out.paths.push_back(std::move(c.path));
+    out.polys.insert(out.polys.end(), std::make_move_iterator(c.polys.begin()), std::make_move_iterator(c.polys.end()));
+  }
   return out;
 }
 

@@ -4,9 +4,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+
+#include "ember/geometry/clip.hpp"
 
 namespace ember::core {
 
@@ -21,8 +24,9 @@ static_assert(std::numeric_limits<double>::digits >= kMaxExactSplits + 1,
 
 }  // namespace
 
-std::size_t merge_whole_triangles(std::vector<OutputPolygon>& polys, std::span<const std::array<IntPoint, 3>> corners) {
-  const std::size_t n_ids = corners.size();
+std::size_t merge_whole_triangles(std::vector<OutputPolygon>& polys) {
+  std::size_t n_ids = 0;
+  for (const OutputPolygon& p : polys) n_ids = std::max<std::size_t>(n_ids, p.id + 1);
   if (polys.size() >= UINT32_MAX) return 0;  // positions are kept in 32 bits; nothing merged then
   std::vector<double> share(n_ids, 0.0);
   std::vector<std::uint32_t> first(n_ids, UINT32_MAX);
@@ -58,9 +62,9 @@ std::size_t merge_whole_triangles(std::vector<OutputPolygon>& polys, std::span<c
         drop[i] = 1;
         continue;
       }
-      // Unbuilt, as the soup held it: a piece keeps its triangle's support plane.
-      p.poly = Polygon{p.poly.support, {}, {}};
-      p.corners = &corners[p.id];
+      // Unbuilt, as the soup held it.
+      p.vertices = {};
+      p.path = OutputPolygon::kNoPath;
       p.splits = 0;
     }
   });
@@ -72,6 +76,34 @@ std::size_t merge_whole_triangles(std::vector<OutputPolygon>& polys, std::span<c
   }
   polys.resize(kept);
   return count;
+}
+
+void expand_path_pieces(std::vector<OutputPolygon>& polys, std::span<const SplitPath> paths) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const auto& r) {
+    std::vector<const SplitStep*> steps;
+    SoupPolygon piece;
+    Polygon neg, pos;
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      OutputPolygon& p = polys[i];
+      if (p.path == OutputPolygon::kNoPath) continue;
+      steps.clear();
+      for (const SplitStep* s = paths[p.path].get(); s; s = s->parent.get()) steps.push_back(s);
+      piece = unbuilt_triangle(*p.corners, p.id, p.operand);
+      materialize(piece);
+      for (auto it = steps.rbegin(); it != steps.rend(); ++it) {
+        const SplitStep& s = **it;
+        // As split_range: a piece whose conservative box lies on one side is
+        // not clipped (it lies on the path's side, or it would not be here).
+        const auto at = static_cast<double>(s.position);
+        if (piece.hi[s.axis] < at || piece.lo[s.axis] > at) continue;
+        if (clip(*piece.poly, axis_plane(s.axis, s.position), neg, pos) != ClipSide::Both) continue;
+        std::swap(*piece.poly, s.upper ? pos : neg);
+        update_bounds(piece);
+      }
+      p.vertices.assign(piece.poly->vertices.begin(), piece.poly->vertices.end());
+      p.path = OutputPolygon::kNoPath;
+    }
+  });
 }
 
 }  // namespace ember::core

@@ -1,7 +1,6 @@
 #pragma once
 // Input triangles that the subdivision cut into pieces but that reach the
 // output whole, put back together before the mesh stage.
-#include <array>
 #include <span>
 #include <vector>
 
@@ -17,6 +16,13 @@ namespace ember::core {
 /// and the other pieces are removed, so the mesh stage has no cut points to
 /// weld, merge and remove for it. Order is otherwise kept.
 /// Returns how many triangles were put back together.
-std::size_t merge_whole_triangles(std::vector<OutputPolygon>& polys, std::span<const std::array<IntPoint, 3>> corners);
+std::size_t merge_whole_triangles(std::vector<OutputPolygon>& polys);
+
+/// Gives every path piece left after merge_whole_triangles its vertices:
+/// its triangle clipped by the splits of paths[p.path] in their order,
+/// keeping the side the path took, which is exactly the polygon the
+/// subdivision made (split_range clips the same way; a split that does not
+/// cut the piece leaves it as it is).
+void expand_path_pieces(std::vector<OutputPolygon>& polys, std::span<const SplitPath> paths);
 
 }  // namespace ember::core

@@ -37,7 +37,7 @@ struct CornerKey {
 const Point& corner_point(std::span<const OutputPolygon> polys, const Cycles& offsets_only,
                           const std::vector<std::uint32_t>& poly_of, std::uint32_t corner) {
   const std::uint32_t p = poly_of[corner];
-  return polys[p].poly.vertices[corner - offsets_only.offsets[p]];
+  return polys[p].vertices[corner - offsets_only.offsets[p]];
 }
 
 }  // namespace
@@ -60,9 +60,9 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
         const OutputPolygon& p = polys[i];
         const std::uint32_t k = c - corners.offsets[i];
         // An unbuilt triangle's corners are grid points already.
-        const std::optional<IntPoint> g = p.corners ? (*p.corners)[k] : as_grid_point(p.poly.vertices[k]);
+        const std::optional<IntPoint> g = unbuilt(p) ? (*p.corners)[k] : as_grid_point(p.vertices[k]);
         if (g) grid_of[c] = *g, is_grid[c] = 1;
-        const Vec3d x = g ? q.dequantize(*g) : q.dequantize(p.poly.vertices[k]);
+        const Vec3d x = g ? q.dequantize(*g) : q.dequantize(p.vertices[k]);
         keys[c] = {x.x + 0.0, x.y + 0.0, x.z + 0.0, c, g.has_value()};  // -0.0 -> +0.0: equal points, equal keys
       }
   });

@@ -238,7 +238,7 @@ void piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids, s
 Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles, const OutputVertices& verts) {
   std::vector<PlaneKey> keys(polys.size());
   tbb::parallel_for(std::size_t{0}, polys.size(),
-                    [&](std::size_t p) { keys[p] = canonical(polys[p].poly.support, polys[p].flip); });
+                    [&](std::size_t p) { keys[p] = canonical(support_of(polys[p]), polys[p].flip); });
   std::vector<std::uint32_t> order(polys.size());
   std::iota(order.begin(), order.end(), 0u);
   tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
@@ -259,7 +259,7 @@ Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles
   };
   auto plane_of = [&](std::size_t g) {
     const OutputPolygon& first = polys[order[group_begin[g]]];
-    return first.flip ? -first.poly.support : first.poly.support;
+    return first.flip ? -support_of(first) : support_of(first);
   };
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 64), [&](const auto& range) {
     std::vector<std::uint32_t> loop, scratch;

@@ -145,7 +145,7 @@ Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const Out
       const auto ids = corners[p];
       const std::uint32_t a = ids[c - corners.offsets[p]], b = ids[(c - corners.offsets[p] + 1) % ids.size()];
       if (a == b) continue;
-      edge_interior_vertices(polys[p].poly.support, a, b, verts, index, found);
+      edge_interior_vertices(support_of(polys[p]), a, b, verts, index, found);
       if (!found.empty()) inside[run] = found;
     }
   });
