@@ -143,11 +143,11 @@ void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& s
 
 /// Classifies o's vertices against a plane; false if all lie strictly on
 /// one side (o cannot meet the plane).
-bool touches_plane(const Polygon& o, const Plane& plane, std::vector<std::int8_t>& signs) {
+bool touches_plane(const Polygon& o, const Plane& plane, const PlaneApprox& approx, std::vector<std::int8_t>& signs) {
   bool neg = false, pos = false, zero = false;
   signs.resize(o.vertices.size());
   for (std::size_t v = 0; v < o.vertices.size(); ++v) {
-    const int s = classify(o.vertices[v], plane);
+    const int s = classify(o.vertices[v], plane, approx);
     signs[v] = static_cast<std::int8_t>(s);
     zero |= s == 0;
     neg |= s < 0;
@@ -168,7 +168,23 @@ struct LeafScratch {
   std::uint32_t stamp = 0;
   std::size_t n_front = 0, n_back = 0;  ///< free operands per side
   std::vector<Piece> sub, next;         ///< refinement of one piece; pieces being rebuilt
+  /// The leaf soup's approximations (soup.hpp) for the filters of gather and
+  /// of the traces; empty outside solve_leaf and in small leaves.
+  SoupApprox approx;
 };
+
+/// True when every vertex approximation lies clearly on one side of the
+/// plane, strictly (classify's filter decides each, no exact fallback): the
+/// polygon cannot touch the plane, as touches_plane would find exactly.
+bool clearly_one_side(std::span<const std::array<double, 3>> verts, const PlaneApprox& plane) {
+  int side = 0;
+  for (const std::array<double, 3>& f : verts) {
+    const int s = detail::filtered_sign(f, plane, [] { return 0; });
+    if (s == 0 || (side != 0 && s != side)) return false;
+    side = s;
+  }
+  return side != 0;
+}
 
 /// True if t lies in a face plane of the box: then one side of t is outside
 /// the box, where the soup does not show which polygons touch t.
@@ -194,6 +210,7 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
             LeafScratch& sc) {
   const std::uint32_t t_direction = direction[static_cast<std::size_t>(&t - soup.data())];
   const bool t_solid = ctx.solid[t.operand] != 0;
+  const PlaneApprox t_approx(t.poly->support);
   sc.related.clear();
   sc.related_at.clear();
   sc.related_signs.clear();
@@ -210,8 +227,9 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
       ++n;
     }
   };
-  for (std::size_t i = 0; i < soup.size(); ++i) {
-    const SoupPolygon& o = soup[i];
+  const SoupPolygon* const polys = soup.data();  // not reloaded after each push_back
+  for (std::size_t i = 0, n = soup.size(); i < n; ++i) {
+    const SoupPolygon& o = polys[i];
     // Two polygons of one solid operand never cross or overlap (NSI), and the
     // solid operand's own winding numbers at t are known (0 / 1). (Checked
     // before the boxes: it is cheaper and skips half of a two-solid leaf.)
@@ -220,7 +238,8 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
     // Coplanar first: one plane comparison instead of exact zero tests of
     // every vertex (stacks are full of them).
     if (direction[i] != t_direction || !coplanar(t.poly->support, o.poly->support)) {
-      if (!touches_plane(*o.poly, t.poly->support, sc.other_signs)) continue;
+      if (!sc.approx.verts.empty() && clearly_one_side(sc.approx.of(i), t_approx)) continue;
+      if (!touches_plane(*o.poly, t.poly->support, t_approx, sc.other_signs)) continue;
       for (const std::int8_t v : sc.other_signs) {
         front |= v > 0;
         back |= v < 0;
@@ -328,7 +347,7 @@ void refine(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, boo
 /// `side` is the side of t's plane S the path arrives from. (t may be unbuilt:
 /// the proof classifies in the root soup.)
 bool trace_onto(const Soup& soup, const SoupPolygon& t, const Plane& S, const Dyadic& start, int k,
-                const AxisPoint& x, Wnv& w, Wnv& delta, int& side, std::uint32_t skip) {
+                const AxisPoint& x, Wnv& w, Wnv& delta, int& side, std::uint32_t skip, const SoupApprox* flat) {
   side = classify(to_point(start), S);
   if (side == 0) return false;
   const Plane pa = dyadic_axis_plane(start, k);
@@ -349,22 +368,30 @@ bool trace_onto(const Soup& soup, const SoupPolygon& t, const Plane& S, const Dy
   delta.assign(w.size(), 0);
   delta[t.operand] += 1;
   Polygon scratch;  // for unbuilt triangles (the proof traces in the root soup)
-  for (const SoupPolygon& p : soup) {
-    if (p.id == t.id || p.operand == skip || box_disjoint(p, seg.lo, seg.hi)) continue;
-    // A clear miss of the segment's line misses x too (x is on the line), so
-    // it decides both cases below before the exact coplanarity test.
-    if (line_clearly_misses(seg.line, seg.uv, p)) continue;
-    const Polygon& poly = built_polygon(p, scratch);
-    if (coplanar(poly.support, S)) {
-      // Meets the segment only at x (the segment is transverse to S).
-      const int loc = locate(poly, x);
-      if (loc == 0) return false;
-      if (loc < 0) delta[p.operand] += same_orientation(poly.support, S) ? 1 : -1;
-      continue;
+  // One loop per kind of miss filter (as in trace_axis_segment).
+  const SoupPolygon* const polys = soup.data();  // not reloaded after each write to w
+  const std::size_t n = soup.size();
+  const auto run = [&](auto&& clearly_misses) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const SoupPolygon& p = polys[i];
+      if (p.id == t.id || p.operand == skip || box_disjoint(p, seg.lo, seg.hi)) continue;
+      // A clear miss of the segment's line misses x too (x is on the line), so
+      // it decides both cases below before the exact coplanarity test.
+      if (clearly_misses(i, p)) continue;
+      const Polygon& poly = built_polygon(p, scratch);
+      if (coplanar(poly.support, S)) {
+        // Meets the segment only at x (the segment is transverse to S).
+        const int loc = locate(poly, x);
+        if (loc == 0) return false;
+        if (loc < 0) delta[p.operand] += same_orientation(poly.support, S) ? 1 : -1;
+        continue;
+      }
+      if (!add_crossing(seg, poly, p.operand, w)) return false;
     }
-    if (!add_crossing(seg, poly, p.operand, w)) return false;
-  }
-  return true;
+    return true;
+  };
+  if (flat) return run([&](std::size_t i, const SoupPolygon&) { return line_clearly_misses(seg.line, seg.uv, *flat, i); });
+  return run([&](std::size_t, const SoupPolygon& p) { return line_clearly_misses(seg.line, seg.uv, p); });
 }
 
 /// Deterministic pseudo-random weights for alternative interior points.
@@ -386,7 +413,8 @@ bool interior_point(const Polygon& f, const Dyadic& target, int k, AxisPoint& x)
 /// strictly inside at x (interior_point). False if the path meets something
 /// degenerately.
 bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Plane& S, const Dyadic& target, int k,
-                      const AxisPoint& x, bool i_first, bool solid, Wnv& w, Wnv& delta, Wnv& w_front, Wnv& w_back) {
+                      const AxisPoint& x, bool i_first, bool solid, Wnv& w, Wnv& delta, Wnv& w_front, Wnv& w_back,
+                      const SoupApprox* flat) {
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   const std::array<int, 3> order = i_first ? std::array<int, 3>{i, j, k} : std::array<int, 3>{j, i, k};
   w = pb.ref_w;
@@ -394,8 +422,8 @@ bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Plane& S
   // A solid operand's own polygons never cross t and its winding number is
   // 0 in front of t and 1 behind: they need not be traced at all.
   const std::uint32_t skip = solid ? t.operand : kNoSkip;
-  if (!trace_path(pb.soup, pb.ref, target, order, w, skip)) return false;
-  if (!trace_onto(pb.soup, t, S, target, k, x, w, delta, side, skip)) return false;
+  if (!trace_path(pb.soup, pb.ref, target, order, w, skip, flat)) return false;
+  if (!trace_onto(pb.soup, t, S, target, k, x, w, delta, side, skip, flat)) return false;
   w_front = w;
   w_back = w;
   for (std::size_t o = 0; o < w.size(); ++o) {
@@ -423,6 +451,7 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   Wnv& w = scratch.w;
   Wnv& delta = scratch.delta;
+  const SoupApprox* flat = scratch.approx.verts.empty() ? nullptr : &scratch.approx;
   for (int attempt = 0; attempt < 24; ++attempt) {
     // Interior guess: the centroid first, then random convex combinations.
     double ci = 0, cj = 0, total = 0;
@@ -443,7 +472,7 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
       target.num[j] = static_cast<__int128>(std::nearbyint(cj * scale));
       AxisPoint x;
       if (!interior_point(f, target, k, x)) continue;
-      if (classify_through(pb, t, S, target, k, x, attempt % 2 == 0, solid, w, delta, w_front, w_back)) return true;
+      if (classify_through(pb, t, S, target, k, x, attempt % 2 == 0, solid, w, delta, w_front, w_back, flat)) return true;
       break;  // inside but the path is degenerate: next guess
     }
   }
@@ -467,7 +496,7 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
       AxisPoint x;
       if (!interior_point(f, target, k, x)) continue;
       for (const bool i_first : {true, false})
-        if (classify_through(pb, t, S, target, k, x, i_first, solid, w, delta, w_front, w_back)) return true;
+        if (classify_through(pb, t, S, target, k, x, i_first, solid, w, delta, w_front, w_back, flat)) return true;
     }
   }
   return false;
@@ -555,6 +584,11 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
   keyed = {};
   Wnv w_front, w_back;
   LeafScratch scratch;
+  // Only a pile outgrows the caches: a leaf of the usual size (<= leaf_size
+  // polygons) keeps its polygons in cache, and the copy would cost more than
+  // it saves.
+  constexpr std::size_t kFlatLeaf = 256;
+  if (pb.soup.size() > kFlatLeaf) approximate(pb.soup, scratch.approx);
   std::vector<Piece> pieces;
   const auto classify_or_throw = [&](const SoupPolygon& t, const Polygon& f, std::uint64_t seed) {
     if (!classify_piece(pb, t, f, ctx.solid[t.operand] != 0, seed, w_front, w_back, scratch))

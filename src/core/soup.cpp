@@ -53,6 +53,33 @@ bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, con
   return line_clearly_misses(l, uv, (n > 0) - (n < 0), 3, [&](std::size_t i) -> const std::array<double, 3>& { return v[i]; });
 }
 
+void approximate(const Soup& soup, SoupApprox& out) {
+  out.verts.clear();
+  out.begin.assign(1, 0);
+  out.normal_sign.clear();
+  for (const SoupPolygon& p : soup) {
+    std::array<std::int8_t, 3> sign;
+    if (unbuilt(p)) {
+      // Grid points are exact in double; the grid normal is the support's.
+      for (const IntPoint& c : *p.corners)
+        out.verts.push_back({static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z)});
+      const std::array<std::int64_t, 3> n = grid_normal((*p.corners)[0], (*p.corners)[1], (*p.corners)[2]);
+      for (int a = 0; a < 3; ++a) sign[a] = static_cast<std::int8_t>((n[a] > 0) - (n[a] < 0));
+    } else {
+      for (const Point& v : p.poly->vertices) out.verts.push_back(approx(v));
+      for (int a = 0; a < 3; ++a) sign[a] = static_cast<std::int8_t>(p.poly->support.normal(a).sign());
+    }
+    out.normal_sign.push_back(sign);
+    out.begin.push_back(static_cast<std::uint32_t>(out.verts.size()));
+  }
+}
+
+bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const SoupApprox& a, std::size_t i) {
+  const std::span<const std::array<double, 3>> v = a.of(i);
+  return line_clearly_misses(l, uv, a.normal_sign[i][static_cast<std::size_t>(l.axis)], v.size(),
+                             [&](std::size_t k) -> const std::array<double, 3>& { return v[k]; });
+}
+
 Plane support_of(const SoupPolygon& p) {
   if (!unbuilt(p)) return p.poly->support;
   const std::array<IntPoint, 3>& c = *p.corners;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "ember/geometry.hpp"
@@ -59,6 +60,24 @@ void materialize(SoupPolygon& p);
 /// triangle's corners are exact in double): the trace filter that lets most
 /// unbuilt triangles a trace passes near stay unbuilt.
 bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const SoupPolygon& p);
+
+/// A soup's vertex approximations in one flat array, with each polygon's
+/// normal signs: the filters of traces and of the leaf's gather read them
+/// without chasing every polygon's buffers (a leaf tests each of its polygons
+/// against every trace segment). Built or unbuilt polygons alike.
+struct SoupApprox {
+  std::vector<std::array<double, 3>> verts;
+  std::vector<std::uint32_t> begin;                     ///< polygon i: verts[begin[i] .. begin[i+1])
+  std::vector<std::array<std::int8_t, 3>> normal_sign;  ///< sign of each support normal coordinate
+  std::span<const std::array<double, 3>> of(std::size_t i) const {
+    return {verts.data() + begin[i], verts.data() + begin[i + 1]};
+  }
+};
+void approximate(const Soup& soup, SoupApprox& out);
+
+/// line_clearly_misses for polygon i of the soup that `a` approximates: the
+/// same answer as for the polygon itself, from the flat arrays.
+bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const SoupApprox& a, std::size_t i);
 
 /// The support plane of a polygon, built or not.
 Plane support_of(const SoupPolygon& p);

@@ -45,7 +45,8 @@ bool line_region_has_length(const Plane& l0, const Plane& l1, std::span<const Pl
   return false;
 }
 
-bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int axis, Wnv& w, std::uint32_t skip) {
+bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int axis, Wnv& w, std::uint32_t skip,
+                        const SoupApprox* flat) {
   const int dir = a.num[axis] < b.num[axis] ? 1 : (a.num[axis] > b.num[axis] ? -1 : 0);
   if (dir == 0) return true;
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -64,6 +65,15 @@ bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int 
   // The filters here, before the call: most polygons of a leaf miss the
   // segment's box.
   Polygon scratch;  // an unbuilt triangle that passes the filters is built here
+  if (flat) {
+    const SoupPolygon* const polys = soup.data();  // not reloaded after each write to w
+    for (std::size_t i = 0, n = soup.size(); i < n; ++i) {
+      const SoupPolygon& p = polys[i];
+      if (p.operand == skip || box_disjoint(p, seg.lo, seg.hi) || line_clearly_misses(seg.line, seg.uv, *flat, i)) continue;
+      if (!add_crossing(seg, built_polygon(p, scratch), p.operand, w)) return false;
+    }
+    return true;
+  }
   for (const SoupPolygon& p : soup) {
     if (p.operand == skip || box_disjoint(p, seg.lo, seg.hi) || line_clearly_misses(seg.line, seg.uv, p)) continue;
     if (!add_crossing(seg, built_polygon(p, scratch), p.operand, w)) return false;
@@ -102,7 +112,7 @@ bool add_crossing(const AxisSegment& s, const Polygon& poly, std::uint32_t opera
 }
 
 bool trace_path(const Soup& soup, const Dyadic& a, const Dyadic& b, const std::array<int, 3>& order, Wnv& w,
-                std::uint32_t skip) {
+                std::uint32_t skip, const SoupApprox* flat) {
   const int s = std::max(a.shift, b.shift);
   Dyadic cur = with_shift(a, s);
   const Dyadic end = with_shift(b, s);
@@ -110,7 +120,7 @@ bool trace_path(const Soup& soup, const Dyadic& a, const Dyadic& b, const std::a
     if (cur.num[axis] == end.num[axis]) continue;
     Dyadic next = cur;
     next.num[axis] = end.num[axis];
-    if (!trace_axis_segment(soup, cur, next, axis, w, skip)) return false;
+    if (!trace_axis_segment(soup, cur, next, axis, w, skip, flat)) return false;
     cur = next;
   }
   return true;

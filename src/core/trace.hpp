@@ -45,12 +45,14 @@ inline constexpr std::uint32_t kNoSkip = 0xffffffffu;
 /// same shift that differ only in coordinate `axis`. Returns false when the
 /// segment meets a polygon degenerately; w is then unspecified. w[skip] is
 /// not maintained.
+/// `flat`, if given, approximates `soup` (same polygons, same order): the
+/// miss filter then reads it instead of the polygons (same answers, faster).
 bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int axis, Wnv& w,
-                        std::uint32_t skip = kNoSkip);
+                        std::uint32_t skip = kNoSkip, const SoupApprox* flat = nullptr);
 
 /// Axis-parallel path a -> b changing coordinates in the given order (each
 /// segment moves one coordinate). Same contract as trace_axis_segment.
 bool trace_path(const Soup& soup, const Dyadic& a, const Dyadic& b, const std::array<int, 3>& order, Wnv& w,
-                std::uint32_t skip = kNoSkip);
+                std::uint32_t skip = kNoSkip, const SoupApprox* flat = nullptr);
 
 }  // namespace ember::core

@@ -138,6 +138,16 @@ static_assert(std::is_same_v<decltype((NormalCoef{} * PointXYZ{} + NormalCoef{} 
 /// Exact side of `pt` relative to `s`: -1, 0, +1 (0: pt lies on s).
 inline int classify_exact(const Point& pt, const Plane& s) { return classify_value(pt, s).sign(); }
 
+/// A plane's coefficients as doubles, for the classification filter: a, b, c
+/// exactly (|n| <= 2^52), d rounded once (error < u). Converting d (an int128)
+/// costs a library call, so loops over many points convert the plane once.
+struct PlaneApprox {
+  double a, b, c, d;
+  explicit PlaneApprox(const Plane& s)
+      : a(static_cast<double>(s.a.raw())), b(static_cast<double>(s.b.raw())), c(static_cast<double>(s.c.raw())),
+        d(static_cast<double>(s.d.raw())) {}
+};
+
 /// -1, 0, +1: side of `pt` relative to `s` (0: pt lies on s). A floating-point
 /// filter answers when the double estimate v = a x~ + b y~ + c z~ + d~ is
 /// clearly away from zero, else the exact 243-bit predicate decides.
@@ -150,11 +160,11 @@ namespace detail {
 /// coordinates f (relative error < 8u each): the sign of a f0 + b f1 + c f2 + d
 /// when it is clearly away from zero, else exact().
 template <typename Exact>
-inline int filtered_sign(const std::array<double, 3>& f, const Plane& s, Exact&& exact) {
-  const double t0 = static_cast<double>(s.a.raw()) * f[0];
-  const double t1 = static_cast<double>(s.b.raw()) * f[1];
-  const double t2 = static_cast<double>(s.c.raw()) * f[2];
-  const double t3 = static_cast<double>(s.d.raw());
+inline int filtered_sign(const std::array<double, 3>& f, const PlaneApprox& s, Exact&& exact) {
+  const double t0 = s.a * f[0];
+  const double t1 = s.b * f[1];
+  const double t2 = s.c * f[2];
+  const double t3 = s.d;
   const double v = (t0 + t1) + (t2 + t3);
   const double m = (std::fabs(t0) + std::fabs(t1)) + (std::fabs(t2) + std::fabs(t3));
   const double bound = m * 0x1p-48;
@@ -162,10 +172,19 @@ inline int filtered_sign(const std::array<double, 3>& f, const Plane& s, Exact&&
   if (v < -bound) return -1;
   return exact();
 }
+template <typename Exact>
+inline int filtered_sign(const std::array<double, 3>& f, const Plane& s, Exact&& exact) {
+  return filtered_sign(f, PlaneApprox(s), exact);
+}
 }  // namespace detail
 
 inline int classify(const Point& pt, const Plane& s) {
   return detail::filtered_sign(pt.f, s, [&] { return classify_exact(pt, s); });
+}
+/// classify with s's coefficients already converted (`approx` = PlaneApprox(s)):
+/// for loops that test many points against one plane.
+inline int classify(const Point& pt, const Plane& s, const PlaneApprox& approx) {
+  return detail::filtered_sign(pt.f, approx, [&] { return classify_exact(pt, s); });
 }
 
 /// Fast path for an axis plane x_axis = position (as made by axis_plane):

@@ -1,0 +1,125 @@
+// The compact forms of the core's polygons: a soup's flat approximations
+// (SoupApprox) must answer the trace filter exactly as the polygons do, and a
+// path piece (OutputPolygon::path) must expand to exactly the polygon the
+// subdivision made.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+
+#include "core/soup.hpp"
+#include "core/whole_triangles.hpp"
+#include "ember/geometry/clip.hpp"
+
+namespace ember::core {
+namespace {
+
+IntPoint random_point(std::mt19937_64& rng, std::int64_t range) {
+  std::uniform_int_distribution<std::int64_t> c(-range, range);
+  return {c(rng), c(rng), c(rng)};
+}
+
+std::array<IntPoint, 3> random_triangle(std::mt19937_64& rng, std::int64_t range) {
+  while (true) {
+    const std::array<IntPoint, 3> t{random_point(rng, range), random_point(rng, range), random_point(rng, range)};
+    const auto n = grid_normal(t[0], t[1], t[2]);
+    if (n[0] != 0 || n[1] != 0 || n[2] != 0) return t;
+  }
+}
+
+/// Splits p by a random axis plane through its box, as split_range does, and
+/// keeps a random part (or p whole when the plane does not cut it). Appends
+/// the step to `path`. False when the plane missed the box.
+bool random_split(std::mt19937_64& rng, SoupPolygon& p, SplitPath& path) {
+  const int axis = static_cast<int>(rng() % 3);
+  const auto lo = static_cast<std::int64_t>(std::ceil(p.lo[axis])), hi = static_cast<std::int64_t>(std::floor(p.hi[axis]));
+  if (hi < lo) return false;
+  const std::int64_t at = lo + static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(hi - lo + 1));
+  materialize(p);
+  Polygon neg, pos;
+  const ClipSide side = clip(*p.poly, axis_plane(axis, at), neg, pos);
+  bool upper = side == ClipSide::Positive;
+  if (side == ClipSide::Both) {
+    upper = rng() % 2 == 0;
+    *p.poly = upper ? pos : neg;
+    ++p.splits;
+    update_bounds(p);
+  }
+  path = std::make_shared<const SplitStep>(SplitStep{path, at, axis, upper});
+  return true;
+}
+
+TEST(Soup, FlatApproximationsFilterLinesLikeThePolygons) {
+  std::mt19937_64 rng(11);
+  Soup soup;
+  std::vector<std::array<IntPoint, 3>> corners(400);
+  for (std::uint32_t i = 0; i < corners.size(); ++i) {
+    corners[i] = random_triangle(rng, 1000);
+    soup.push_back(unbuilt_triangle(corners[i], i, i % 2));
+    SplitPath path;
+    // A third stays unbuilt, a third is built uncut, a third is cut.
+    if (i % 3 == 1) materialize(soup.back());
+    if (i % 3 == 2)
+      for (int k = 0; k < 4; ++k) random_split(rng, soup.back(), path);
+  }
+  SoupApprox flat;
+  approximate(soup, flat);
+  ASSERT_EQ(flat.begin.size(), soup.size() + 1);
+  std::size_t misses = 0, checked = 0;
+  std::uniform_int_distribution<std::int64_t> c(-1100 * 8, 1100 * 8);
+  for (int l = 0; l < 300; ++l) {
+    const AxisLine line{static_cast<int>(l % 3), DyadicNum(c(rng)), DyadicNum(c(rng)), 3};
+    const std::array<double, 2> uv = line_point_approx(line);
+    for (std::size_t i = 0; i < soup.size(); ++i) {
+      const bool by_polygon = line_clearly_misses(line, uv, soup[i]);
+      ASSERT_EQ(line_clearly_misses(line, uv, flat, i), by_polygon) << "polygon " << i << ", line " << l;
+      misses += by_polygon;
+      ++checked;
+    }
+  }
+  // Both answers occur often, or the comparison proves little.
+  EXPECT_GT(misses, checked / 4);
+  EXPECT_LT(misses, checked);
+}
+
+TEST(Soup, PathPiecesExpandToTheSubdivisionsPolygons) {
+  std::mt19937_64 rng(5);
+  std::vector<std::array<IntPoint, 3>> corners(300);
+  std::vector<OutputPolygon> out;
+  std::vector<SplitPath> paths;
+  std::vector<Polygon> expected;
+  std::size_t cuts = 0;
+  for (std::uint32_t i = 0; i < corners.size(); ++i) {
+    corners[i] = random_triangle(rng, 1 << 20);
+    SoupPolygon p = unbuilt_triangle(corners[i], i, 0);
+    SplitPath path;
+    for (int k = 0; k < 12; ++k) random_split(rng, p, path);
+    if (p.splits == 0) continue;  // a path piece was cut at least once
+    cuts += p.splits;
+    OutputPolygon o;
+    o.corners = &corners[i];
+    o.id = i;
+    o.splits = p.splits;
+    o.whole_piece = true;
+    o.path = static_cast<std::uint32_t>(paths.size());
+    paths.push_back(path);
+    out.push_back(std::move(o));
+    expected.push_back(*p.poly);
+  }
+  ASSERT_GT(out.size(), 100u);
+  ASSERT_GT(cuts, 2 * out.size());
+  expand_path_pieces(out, paths);
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    EXPECT_EQ(out[k].path, OutputPolygon::kNoPath);
+    ASSERT_EQ(out[k].vertices.size(), expected[k].vertices.size()) << "piece " << k;
+    // The same points in the same order (same start): bit for bit.
+    for (std::size_t v = 0; v < expected[k].vertices.size(); ++v) {
+      const Point &a = out[k].vertices[v], &b = expected[k].vertices[v];
+      EXPECT_TRUE(a.x == b.x && a.y == b.y && a.z == b.z && a.w == b.w) << "piece " << k << " vertex " << v;
+    }
+    EXPECT_TRUE(support_of(out[k]) == expected[k].support);
+  }
+}
+
+}  // namespace
+}  // namespace ember::core
