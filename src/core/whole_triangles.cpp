@@ -3,6 +3,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -79,29 +80,62 @@ std::size_t merge_whole_triangles(std::vector<OutputPolygon>& polys) {
 }
 
 void expand_path_pieces(std::vector<OutputPolygon>& polys, std::span<const SplitPath> paths) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const auto& r) {
+  // Grouped by triangle: the pieces of one triangle share the cuts near the
+  // root of their paths, which are then made once per triangle (as the
+  // subdivision made them), not once per piece.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> order;  // (triangle id, position)
+  for (std::size_t i = 0; i < polys.size(); ++i)
+    if (polys[i].path != OutputPolygon::kNoPath) order.emplace_back(polys[i].id, static_cast<std::uint32_t>(i));
+  if (order.empty()) return;
+  tbb::parallel_sort(order.begin(), order.end());
+  std::vector<std::size_t> group_begin;
+  for (std::size_t k = 0; k < order.size(); ++k)
+    if (k == 0 || order[k].first != order[k - 1].first) group_begin.push_back(k);
+  group_begin.push_back(order.size());
+  struct Cut {
+    const SplitStep* at;  ///< the piece in the box of this step (null: the whole triangle)
+    SoupPolygon piece;
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, group_begin.size() - 1, 64), [&](const auto& r) {
+    std::vector<Cut> cuts;  // per triangle, each piece that a cut made on the way
     std::vector<const SplitStep*> steps;
     SoupPolygon piece;
     Polygon neg, pos;
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      OutputPolygon& p = polys[i];
-      if (p.path == OutputPolygon::kNoPath) continue;
-      steps.clear();
-      for (const SplitStep* s = paths[p.path].get(); s; s = s->parent.get()) steps.push_back(s);
-      piece = unbuilt_triangle(*p.corners, p.id, p.operand);
-      materialize(piece);
-      for (auto it = steps.rbegin(); it != steps.rend(); ++it) {
-        const SplitStep& s = **it;
-        // As split_range: a piece whose conservative box lies on one side is
-        // not clipped (it lies on the path's side, or it would not be here).
-        const auto at = static_cast<double>(s.position);
-        if (piece.hi[s.axis] < at || piece.lo[s.axis] > at) continue;
-        if (clip(*piece.poly, axis_plane(s.axis, s.position), neg, pos) != ClipSide::Both) continue;
-        std::swap(*piece.poly, s.upper ? pos : neg);
-        update_bounds(piece);
+    for (std::size_t g = r.begin(); g != r.end(); ++g) {
+      cuts.clear();
+      for (std::size_t k = group_begin[g]; k < group_begin[g + 1]; ++k) {
+        OutputPolygon& p = polys[order[k].second];
+        if (cuts.empty()) {
+          cuts.push_back({nullptr, unbuilt_triangle(*p.corners, p.id, p.operand)});
+          materialize(cuts.back().piece);
+        }
+        // Up the path to the deepest step whose piece is known, then down.
+        steps.clear();
+        const SplitStep* s = paths[p.path].get();
+        const Cut* from = nullptr;
+        for (;; s = s->parent.get()) {
+          for (const Cut& c : cuts)
+            if (c.at == s) from = &c;
+          if (from) break;
+          steps.push_back(s);
+        }
+        piece.poly = std::make_unique<Polygon>(*from->piece.poly);
+        piece.lo = from->piece.lo;
+        piece.hi = from->piece.hi;
+        for (auto it = steps.rbegin(); it != steps.rend(); ++it) {
+          const SplitStep& step = **it;
+          // As split_range: a piece whose conservative box lies on one side is
+          // not clipped (it lies on the path's side, or it would not be here).
+          const auto at = static_cast<double>(step.position);
+          if (piece.hi[step.axis] < at || piece.lo[step.axis] > at) continue;
+          if (clip(*piece.poly, axis_plane(step.axis, step.position), neg, pos) != ClipSide::Both) continue;
+          std::swap(*piece.poly, step.upper ? pos : neg);
+          update_bounds(piece);
+          cuts.push_back({&step, SoupPolygon{std::make_unique<Polygon>(*piece.poly), 0, 0, piece.lo, piece.hi, 0, nullptr}});
+        }
+        p.vertices.assign(piece.poly->vertices.begin(), piece.poly->vertices.end());
+        p.path = OutputPolygon::kNoPath;
       }
-      p.vertices.assign(piece.poly->vertices.begin(), piece.poly->vertices.end());
-      p.path = OutputPolygon::kNoPath;
     }
   });
 }

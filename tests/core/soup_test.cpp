@@ -4,6 +4,7 @@
 // subdivision made.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <random>
 
@@ -91,21 +92,44 @@ TEST(Soup, PathPiecesExpandToTheSubdivisionsPolygons) {
   std::size_t cuts = 0;
   for (std::uint32_t i = 0; i < corners.size(); ++i) {
     corners[i] = random_triangle(rng, 1 << 20);
-    SoupPolygon p = unbuilt_triangle(corners[i], i, 0);
-    SplitPath path;
-    for (int k = 0; k < 12; ++k) random_split(rng, p, path);
-    if (p.splits == 0) continue;  // a path piece was cut at least once
-    cuts += p.splits;
-    OutputPolygon o;
-    o.corners = &corners[i];
-    o.id = i;
-    o.splits = p.splits;
-    o.whole_piece = true;
-    o.path = static_cast<std::uint32_t>(paths.size());
-    paths.push_back(path);
-    out.push_back(std::move(o));
-    expected.push_back(*p.poly);
+    // Up to three pieces of one triangle that share the first splits (as
+    // pieces in neighbouring boxes do), in a shuffled order.
+    SoupPolygon prefix = unbuilt_triangle(corners[i], i, 0);
+    SplitPath prefix_path;
+    for (int k = 0; k < 6; ++k) random_split(rng, prefix, prefix_path);
+    for (int branch = 0; branch < 3; ++branch) {
+      SoupPolygon p = unbuilt_triangle(corners[i], i, 0);
+      if (!unbuilt(prefix)) p.poly = std::make_unique<Polygon>(*prefix.poly);
+      p.lo = prefix.lo;
+      p.hi = prefix.hi;
+      p.splits = prefix.splits;
+      SplitPath path = prefix_path;
+      for (int k = 0; k < 6; ++k) random_split(rng, p, path);
+      if (p.splits == 0) continue;  // a path piece was cut at least once
+      cuts += p.splits;
+      OutputPolygon o;
+      o.corners = &corners[i];
+      o.id = i;
+      o.splits = p.splits;
+      o.whole_piece = true;
+      o.path = static_cast<std::uint32_t>(paths.size());
+      paths.push_back(path);
+      out.push_back(std::move(o));
+      expected.push_back(*p.poly);
+    }
   }
+  // Output order does not group a triangle's pieces.
+  std::vector<std::size_t> perm(out.size());
+  for (std::size_t k = 0; k < perm.size(); ++k) perm[k] = k;
+  std::shuffle(perm.begin(), perm.end(), rng);
+  std::vector<OutputPolygon> shuffled;
+  std::vector<Polygon> shuffled_expected;
+  for (const std::size_t k : perm) {
+    shuffled.push_back(std::move(out[k]));
+    shuffled_expected.push_back(expected[k]);
+  }
+  out = std::move(shuffled);
+  expected = std::move(shuffled_expected);
   ASSERT_GT(out.size(), 100u);
   ASSERT_GT(cuts, 2 * out.size());
   expand_path_pieces(out, paths);
