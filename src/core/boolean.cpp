@@ -156,7 +156,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     result.stats.operands.resize(operands.size());
     core::audit_quantization(operands, gi, q, result.stats.operands, result.warnings);
     open = core::count_open_edges(gi);
-    in = core::build_soup(gi, options.detect_solid);
+    in = core::build_soup(gi);
   });
   for (const OperandReport& r : result.stats.operands) {
     result.stats.collapsed_triangles += r.collapsed_triangles;
@@ -165,6 +165,16 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   result.stats.input_triangles = gi.triangles.size();
   result.stats.dropped_degenerate = in.dropped_degenerate;
   const std::array<std::int64_t, 3> lo = gi.lo, hi = gi.hi;
+  // The mesh stage welds unbuilt triangles' corners through these ids.
+  std::optional<core::InputVertexIds> vertex_ids = core::InputVertexIds{};
+  vertex_ids->operand_base.push_back(0);
+  for (const std::size_t count : gi.vertex_count) {
+    if (count > UINT32_MAX - 1 - vertex_ids->operand_base.back()) {
+      vertex_ids.reset();  // too many to number in 32 bits: the weld sorts every corner
+      break;
+    }
+    vertex_ids->operand_base.push_back(vertex_ids->operand_base.back() + static_cast<std::uint32_t>(count));
+  }
   gi = {};
   for (std::size_t o = 0; o < operands.size(); ++o) {
     result.stats.operands[o].open_edges = open[o];
@@ -213,7 +223,6 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
           report(options, "solid check", 0.1 + 0.1 * static_cast<double>(o) / static_cast<double>(operands.size()));
           arena.execute([&] { ctx.solid[o] = prove_solid(root, grid, o, result); });
         }
-      grid.vertex_ids = {};
     }
     for (const char s : ctx.solid) result.stats.solid_operands += s != 0;
     proved = std::chrono::steady_clock::now();
@@ -233,7 +242,8 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     arena.execute([&] { result.mesh = export_mesh(polys, q, sources, result.provenance, result.stats.dropped_slivers); });
   } else {
     core::MeshOutput m;
-    arena.execute([&] { m = core::build_triangle_mesh(polys, q, sources); });
+    if (vertex_ids) vertex_ids->by_triangle = grid.vertex_ids;
+    arena.execute([&] { m = core::build_triangle_mesh(polys, q, sources, vertex_ids ? &*vertex_ids : nullptr); });
     result.mesh = std::move(m.mesh);
     result.provenance = std::move(m.provenance);
     result.stats.tjunctions_resolved = m.stats.tjunctions;

@@ -88,7 +88,7 @@ std::vector<std::size_t> count_open_edges(const GridInput& gi) {
   return open;
 }
 
-InputSoup build_soup(const GridInput& gi, bool keep_grid) {
+InputSoup build_soup(const GridInput& gi) {
   const std::size_t n = gi.triangles.size();
   // Pass 1: which triangles have area (the exact grid normal is non-zero;
   // make_triangle decides the same).
@@ -118,7 +118,7 @@ InputSoup build_soup(const GridInput& gi, bool keep_grid) {
   in.soup.resize(kept);
   in.sources.resize(kept);
   in.grid.corners.resize(kept);
-  if (keep_grid) in.grid.vertex_ids.resize(kept);
+  in.grid.vertex_ids.resize(kept);
   // Pass 2: triangle i (kept when id[i + 1] > id[i]) becomes polygon id[i].
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
@@ -130,7 +130,7 @@ InputSoup build_soup(const GridInput& gi, bool keep_grid) {
       in.grid.corners[k] = t.p;
       in.soup[k] = unbuilt_triangle(in.grid.corners[k], k, t.operand);
       in.sources[k] = {t.operand, t.face};
-      if (keep_grid) in.grid.vertex_ids[k] = gi.vertex_ids[i];
+      in.grid.vertex_ids[k] = gi.vertex_ids[i];
     }
   });
   return in;

@@ -26,14 +26,14 @@ std::vector<std::size_t> count_open_edges(const GridInput& gi);
 /// (the total order of coplanar overlaps), sources[id] their origin,
 /// grid.corners by id (the soup's unbuilt triangles point into it, so it must
 /// outlive the soup and the solve's output; the solid proof and
-/// merge_whole_triangles read it too) and,
-/// when `keep_grid`, grid.vertex_ids by id for the solid proof.
+/// merge_whole_triangles read it too) and grid.vertex_ids by id (the solid
+/// proof's edge matching, the mesh stage's weld).
 struct InputSoup {
   Soup soup;
   std::vector<Provenance> sources;
   GridTriangles grid;
   std::size_t dropped_degenerate = 0;
 };
-InputSoup build_soup(const GridInput& gi, bool keep_grid);
+InputSoup build_soup(const GridInput& gi);
 
 }  // namespace ember::core

@@ -9,10 +9,22 @@
 // on the filter-or-integer fast paths.
 // Ids are numbered by first appearance in output order, so they do not depend
 // on the sort or on scheduling.
+//
+// Most corners belong to unbuilt output triangles (whole input triangles),
+// whose corners already carry the set-up's welded grid vertex ids: all the
+// corners of one input vertex are one item of the sort (keyed by its first
+// corner), so the sort sees each such vertex once instead of once per corner
+// (about six times). Only the other corners are sorted one by one. The ids
+// come out the same either way: an item stands for the smallest corner it
+// covers, and a class's id is ordered by its smallest corner.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
+#include <algorithm>
+#include <atomic>
+#include <numeric>
+#include <optional>
 #include <tuple>
 
 #include "core/mesh/mesh_output.hpp"
@@ -22,109 +34,178 @@ namespace ember::core {
 
 namespace {
 
-struct CornerKey {
+/// A sort key: the rounded position of an item and the smallest corner it stands for.
+struct ItemKey {
   double x, y, z;
   std::uint32_t corner;
-  bool grid;  ///< the corner is a grid point (then grid_of[corner] holds it)
-  friend bool operator<(const CornerKey& a, const CornerKey& b) {
+  std::uint32_t item;
+  friend bool operator<(const ItemKey& a, const ItemKey& b) {
     return std::tie(a.x, a.y, a.z, a.corner) < std::tie(b.x, b.y, b.z, b.corner);
   }
-  bool same_position(const CornerKey& o) const { return x == o.x && y == o.y && z == o.z; }
+  bool same_position(const ItemKey& o) const { return x == o.x && y == o.y && z == o.z; }
 };
 
-/// The exact corner; only asked for corners that are not grid points, so
-/// never for an unbuilt triangle's (OutputPolygon::corners).
-const Point& corner_point(std::span<const OutputPolygon> polys, const Cycles& offsets_only,
-                          const std::vector<std::uint32_t>& poly_of, std::uint32_t corner) {
-  const std::uint32_t p = poly_of[corner];
-  return polys[p].vertices[corner - offsets_only.offsets[p]];
+/// What an item is: a grid point (an input vertex, or a built corner that is
+/// one), or otherwise built corner k of polygon `poly`.
+struct Item {
+  IntPoint grid{};
+  std::uint32_t poly = 0;
+  std::uint32_t k = 0;
+  std::uint32_t corner = 0;  ///< the smallest corner the item stands for
+  bool is_grid = false;
+};
+
+constexpr std::uint32_t kNone = UINT32_MAX;
+
+/// Per polygon, where its corners are; per input vertex id, its first corner.
+struct CornerLayout {
+  std::vector<std::uint32_t> built_before;  ///< per polygon: built corners of earlier polygons (+ total)
+  std::vector<std::uint32_t> first_corner;  ///< per global input vertex id: smallest corner on it, or kNone
+};
+
+/// Whether p's corners are folded into their input vertices' items.
+bool folded(const OutputPolygon& p, const InputVertexIds* ids) { return ids && unbuilt(p); }
+
+std::uint32_t input_vertex(const OutputPolygon& p, std::uint32_t k, const InputVertexIds& ids) {
+  return ids.operand_base[p.operand] + ids.by_triangle[p.id][k];
 }
+
+CornerLayout lay_out_corners(std::span<const OutputPolygon> polys, const Cycles& corners, const InputVertexIds* ids) {
+  CornerLayout l;
+  l.built_before.resize(polys.size() + 1, 0);
+  for (std::size_t i = 0; i < polys.size(); ++i)
+    l.built_before[i + 1] = l.built_before[i] + (folded(polys[i], ids) ? 0 : static_cast<std::uint32_t>(corner_count(polys[i])));
+  if (!ids) return l;
+  l.first_corner.assign(ids->operand_base.back(), kNone);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 1024), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      if (!folded(polys[i], ids)) continue;
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        std::atomic_ref<std::uint32_t> first(l.first_corner[input_vertex(polys[i], k, *ids)]);
+        const std::uint32_t here = corners.offsets[i] + k;
+        for (std::uint32_t seen = first.load(std::memory_order_relaxed);
+             here < seen && !first.compare_exchange_weak(seen, here, std::memory_order_relaxed);) {
+        }
+      }
+    }
+  });
+  return l;
+}
+
+/// The exact point of a non-grid item.
+const Point& item_point(std::span<const OutputPolygon> polys, const Item& it) { return polys[it.poly].vertices[it.k]; }
 
 }  // namespace
 
-OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer& q) {
+OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer& q, const InputVertexIds* ids) {
   OutputVertices out;
   Cycles& corners = out.corners;
   corners.offsets.resize(polys.size() + 1, 0);
   for (std::size_t i = 0; i < polys.size(); ++i)
     corners.offsets[i + 1] = corners.offsets[i] + static_cast<std::uint32_t>(corner_count(polys[i]));
   const std::size_t n = corners.offsets.back();
-  std::vector<std::uint32_t> poly_of(n);
-  std::vector<CornerKey> keys(n);
-  std::vector<IntPoint> grid_of(n);
-  std::vector<char> is_grid(n, 0);
+  CornerLayout layout = lay_out_corners(polys, corners, ids);
+
+  // Items: the built corners (in output order), then the input vertices in use.
+  const std::uint32_t built = layout.built_before.back();
+  std::uint32_t items = built;
+  for (std::uint32_t& f : layout.first_corner)
+    if (f != kNone) ++items;
+  std::vector<Item> item(items);
+  std::vector<ItemKey> keys(items);
+  auto key_of = [&](std::uint32_t i, std::uint32_t corner, const std::optional<IntPoint>& g, const Point* exact) {
+    const Vec3d x = g ? q.dequantize(*g) : q.dequantize(*exact);
+    keys[i] = {x.x + 0.0, x.y + 0.0, x.z + 0.0, corner, i};  // -0.0 -> +0.0: equal points, equal keys
+  };
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const auto& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i)
-      for (std::uint32_t c = corners.offsets[i]; c < corners.offsets[i + 1]; ++c) {
-        poly_of[c] = static_cast<std::uint32_t>(i);
-        const OutputPolygon& p = polys[i];
-        const std::uint32_t k = c - corners.offsets[i];
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const OutputPolygon& p = polys[i];
+      if (folded(p, ids)) continue;
+      for (std::uint32_t k = 0; k < corner_count(p); ++k) {
+        const std::uint32_t at = layout.built_before[i] + k;
         // An unbuilt triangle's corners are grid points already.
         const std::optional<IntPoint> g = unbuilt(p) ? (*p.corners)[k] : as_grid_point(p.vertices[k]);
-        if (g) grid_of[c] = *g, is_grid[c] = 1;
-        const Vec3d x = g ? q.dequantize(*g) : q.dequantize(p.vertices[k]);
-        keys[c] = {x.x + 0.0, x.y + 0.0, x.z + 0.0, c, g.has_value()};  // -0.0 -> +0.0: equal points, equal keys
+        item[at] = {g.value_or(IntPoint{}), static_cast<std::uint32_t>(i), k, corners.offsets[i] + k, g.has_value()};
+        key_of(at, corners.offsets[i] + k, g, g ? nullptr : &p.vertices[k]);
       }
+    }
   });
+  // Input vertex items, numbered in id order after the built corners; from
+  // here on first_corner[v] holds v's item.
+  for (std::uint32_t v = 0, at = built; v < layout.first_corner.size(); ++v) {
+    std::uint32_t& f = layout.first_corner[v];
+    if (f == kNone) continue;
+    const std::uint32_t c = f;
+    const auto poly = static_cast<std::uint32_t>(std::upper_bound(corners.offsets.begin(), corners.offsets.end(), c) -
+                                                 corners.offsets.begin() - 1);
+    const IntPoint g = (*polys[poly].corners)[c - corners.offsets[poly]];
+    item[at] = {g, poly, c - corners.offsets[poly], c, true};
+    key_of(at, c, g, nullptr);
+    f = at++;
+  }
   tbb::parallel_sort(keys.begin(), keys.end());
 
-  // Representative (first corner in output order) of each corner's class.
-  std::vector<std::uint32_t> rep(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& r) {
+  // Representative (the item with the smallest corner) of each item's class.
+  std::vector<std::uint32_t> rep(items);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
     std::size_t i = r.begin();
-    while (i > 0 && i < n && keys[i].same_position(keys[i - 1])) ++i;  // runs belong to the block they start in
+    while (i > 0 && i < items && keys[i].same_position(keys[i - 1])) ++i;  // runs belong to the block they start in
     std::vector<std::uint32_t> heads;  // class representatives within the current run
-    while (i < r.end() && i < n) {
+    while (i < r.end() && i < items) {
       std::size_t j = i;
-      while (j < n && keys[j].same_position(keys[i])) ++j;
+      while (j < items && keys[j].same_position(keys[i])) ++j;
       heads.clear();
       for (std::size_t k = i; k < j; ++k) {
-        const std::uint32_t c = keys[k].corner;
-        const bool grid = keys[k].grid;
-        // Grid-ness belongs to the exact point: a grid corner equals only grid corners.
+        const Item& it = item[keys[k].item];
+        // Grid-ness belongs to the exact point: a grid point equals only grid points.
         auto same = [&](std::uint32_t h) {
-          if (grid) return is_grid[h] && grid_of[h] == grid_of[c];
-          return !is_grid[h] && same_point(corner_point(polys, corners, poly_of, h),
-                                           corner_point(polys, corners, poly_of, c));
+          if (it.is_grid) return item[h].is_grid && item[h].grid == it.grid;
+          return !item[h].is_grid && same_point(item_point(polys, item[h]), item_point(polys, it));
         };
-        std::uint32_t found = c;
+        std::uint32_t found = keys[k].item;
         for (const std::uint32_t h : heads)
           if (same(h)) {
             found = h;
             break;
           }
-        if (found == keys[k].corner) heads.push_back(found);
-        rep[c] = found;  // keys are sorted by corner within a run: the head is the smallest
+        if (found == keys[k].item) heads.push_back(found);
+        rep[keys[k].item] = found;  // keys are sorted by corner within a run: the head's is the smallest
       }
       i = j;
     }
   });
 
-  // Number classes by their representative's position in output order: a
-  // scan over the head flags, then every corner in parallel.
-  std::vector<std::uint32_t> class_of_head(n);
-  std::uint32_t classes = 0;
-  for (std::size_t c = 0; c < n; ++c) {
-    class_of_head[c] = classes;
-    classes += rep[c] == c;
-  }
+  // Number classes by their representative's corner (first appearance in
+  // output order): flag the heads' corners, then count along the corners.
+  std::vector<std::uint32_t> class_at(n + 1, 0);  // per corner: 1 if it heads a class; then its class
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k)
+      if (rep[keys[k].item] == keys[k].item) class_at[keys[k].corner] = 1;
+  });
+  std::exclusive_scan(class_at.begin(), class_at.end(), class_at.begin(), 0u);
+  const std::uint32_t classes = class_at[n];
+  auto class_of = [&](std::uint32_t it) { return class_at[item[rep[it]].corner]; };
   out.exact.resize(classes);
-  corners.ids.resize(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& r) {
-    for (std::size_t c = r.begin(); c != r.end(); ++c) {
-      const std::uint32_t id = class_of_head[rep[c]];
-      corners.ids[c] = id;
-      if (rep[c] == c)
-        out.exact[id] = is_grid[c] ? to_point(grid_of[c])
-                                   : corner_point(polys, corners, poly_of, static_cast<std::uint32_t>(c));
+  out.rounded.resize(classes);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      const ItemKey& key = keys[k];
+      if (rep[key.item] != key.item) continue;
+      const Item& it = item[key.item];
+      const std::uint32_t id = class_at[key.corner];
+      out.exact[id] = it.is_grid ? to_point(it.grid) : item_point(polys, it);
+      out.rounded[id] = {key.x, key.y, key.z};  // each class is rounded once
     }
   });
-  // Each class's rounded position is its representative's key: rounded once.
-  out.rounded.resize(out.exact.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& r) {
-    for (std::size_t k = r.begin(); k != r.end(); ++k) {
-      const std::uint32_t c = keys[k].corner;
-      if (rep[c] == c) out.rounded[corners.ids[c]] = {keys[k].x, keys[k].y, keys[k].z};
+  corners.ids.resize(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const OutputPolygon& p = polys[i];
+      for (std::uint32_t k = 0; k < corner_count(p); ++k) {
+        const std::uint32_t it = folded(p, ids) ? layout.first_corner[input_vertex(p, k, *ids)]
+                                                : layout.built_before[i] + k;
+        corners.ids[corners.offsets[i] + k] = class_of(it);
+      }
     }
   });
   return out;

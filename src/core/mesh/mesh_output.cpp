@@ -119,10 +119,10 @@ void assemble(const Regions& regions, const std::vector<std::array<std::uint32_t
 }  // namespace
 
 MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quantizer& q,
-                               std::span<const Provenance> sources) {
+                               std::span<const Provenance> sources, const InputVertexIds* ids) {
   MeshOutput out;
   auto clock = std::chrono::steady_clock::now();
-  const OutputVertices verts = exact_weld(polys, q);
+  const OutputVertices verts = exact_weld(polys, q, ids);
   out.stats.weld_ms = ms_since(clock);
   const VertexIndex index = index_output_vertices(polys, verts);
   const Cycles cycles = insert_tjunction_vertices(polys, verts, index, out.stats.tjunctions);
