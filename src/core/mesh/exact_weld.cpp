@@ -145,12 +145,13 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
   }
   tbb::parallel_sort(keys.begin(), keys.end());
 
-  // Representative (the item with the smallest corner) of each item's class.
+  // Per item, its class's representative: the smallest corner of the class
+  // (that of the class's first item in the run).
   std::vector<std::uint32_t> rep(items);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
     std::size_t i = r.begin();
     while (i > 0 && i < items && keys[i].same_position(keys[i - 1])) ++i;  // runs belong to the block they start in
-    std::vector<std::uint32_t> heads;  // class representatives within the current run
+    std::vector<std::uint32_t> heads;  // the items heading the classes of the current run
     while (i < r.end() && i < items) {
       std::size_t j = i;
       while (j < items && keys[j].same_position(keys[i])) ++j;
@@ -169,7 +170,7 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
             break;
           }
         if (found == keys[k].item) heads.push_back(found);
-        rep[keys[k].item] = found;  // keys are sorted by corner within a run: the head's is the smallest
+        rep[keys[k].item] = item[found].corner;  // keys are sorted by corner within a run: the head's is the smallest
       }
       i = j;
     }
@@ -180,17 +181,17 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
   std::vector<std::uint32_t> class_at(n + 1, 0);  // per corner: 1 if it heads a class; then its class
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
     for (std::size_t k = r.begin(); k != r.end(); ++k)
-      if (rep[keys[k].item] == keys[k].item) class_at[keys[k].corner] = 1;
+      if (rep[keys[k].item] == keys[k].corner) class_at[keys[k].corner] = 1;
   });
   std::exclusive_scan(class_at.begin(), class_at.end(), class_at.begin(), 0u);
   const std::uint32_t classes = class_at[n];
-  auto class_of = [&](std::uint32_t it) { return class_at[item[rep[it]].corner]; };
+  auto class_of = [&](std::uint32_t it) { return class_at[rep[it]]; };
   out.exact.resize(classes);
   out.rounded.resize(classes);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
     for (std::size_t k = r.begin(); k != r.end(); ++k) {
       const ItemKey& key = keys[k];
-      if (rep[key.item] != key.item) continue;
+      if (rep[key.item] != key.corner) continue;
       const Item& it = item[key.item];
       const std::uint32_t id = class_at[key.corner];
       out.exact[id] = it.is_grid ? to_point(it.grid) : item_point(polys, it);

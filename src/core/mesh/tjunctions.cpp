@@ -64,7 +64,7 @@ void edge_interior_vertices(const Plane& support, std::uint32_t a, std::uint32_t
   int axis = -1, dir = 0;
   found.clear();
   index.for_each_near_segment(verts.rounded[a], verts.rounded[b], [&](std::uint32_t v) {
-    if (v == a || v == b) return;
+    if (v == a || v == b || clearly_off_segment(verts.rounded[a], verts.rounded[b], verts.rounded[v])) return;
     const Point& x = verts.exact[v];
     if (classify(x, support) != 0 || orient2d_dropped(pa, pb, x, dominant_axis(support)) != 0) return;
     if (axis < 0) {

@@ -14,6 +14,32 @@
 
 namespace ember::core {
 
+/// A floating-point filter for the exact on-segment tests that follow a
+/// search: true only if the exact point whose correctly rounded position is
+/// rv cannot lie on the exact segment whose end points round to ra and rb.
+///
+/// Why it is sound: let M be the largest |coordinate| of the three and D the
+/// largest |rb - ra| coordinate. Correct rounding moves each coordinate by at
+/// most 2^-53 M (normal range, ensured below). If the exact point is
+/// a + t (b - a), then rv - ra = t (rb - ra) + e with |e_i| <= 2^-51 M, so each
+/// component of (rb - ra) x (rv - ra) = (rb - ra) x e is at most
+/// 2 D 2^-51 M = 2^-50 D M; evaluating it in double (two correctly rounded
+/// differences per factor, two products, one difference, |rv - ra| <= 2M)
+/// adds less than 2^-48 D M. A component above 2^-40 D M therefore rules the
+/// point out, with a margin of 2^7. Outside 2^-400 <= D, M <= 2^400 (where
+/// subnormals or overflow could spoil the bounds) it rules nothing out.
+inline bool clearly_off_segment(const Vec3d& ra, const Vec3d& rb, const Vec3d& rv) {
+  const double M = std::max({std::fabs(ra.x), std::fabs(ra.y), std::fabs(ra.z), std::fabs(rb.x), std::fabs(rb.y),
+                             std::fabs(rb.z), std::fabs(rv.x), std::fabs(rv.y), std::fabs(rv.z)});
+  const double dx = rb.x - ra.x, dy = rb.y - ra.y, dz = rb.z - ra.z;
+  const double D = std::max({std::fabs(dx), std::fabs(dy), std::fabs(dz)});
+  if (!(D >= 0x1p-400) || !(M <= 0x1p400)) return false;
+  const double wx = rv.x - ra.x, wy = rv.y - ra.y, wz = rv.z - ra.z;
+  const double bound = 0x1p-40 * D * M;
+  return std::fabs(dy * wz - dz * wy) > bound || std::fabs(dz * wx - dx * wz) > bound ||
+         std::fabs(dx * wy - dy * wx) > bound;
+}
+
 /// A set of vertices bucketed in a uniform grid over their rounded positions
 /// (cells about one mean edge long, found through a hash table). Positions
 /// are copied so that a query touches only the set's own memory.
