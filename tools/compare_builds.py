@@ -12,6 +12,10 @@ reports every difference.
 
 Reference outputs are cached per REF_BIN path and case under --work, so a
 second run only runs NEW_BIN. Exit code 1 if anything differs or fails.
+
+--same-mesh compares triangle-mesh outputs as meshes instead of bytes: the
+same vertices (exact decimal text) and the same oriented faces, in any order
+and any rotation. For changes that only reorder the output.
 """
 from __future__ import annotations
 
@@ -163,6 +167,31 @@ def make_cases(data, work, pool_pairs, seed):
     return cases
 
 
+def canonical_mesh(path):
+    """Sorted oriented faces as tuples of vertex text, each rotated to start
+    at its smallest vertex; None if the file is not a mesh (a failure)."""
+    verts, faces = [], []
+    for line in open(path):
+        if line.startswith("v "):
+            verts.append(tuple(line.split()[1:4]))
+        elif line.startswith("f "):
+            f = [verts[int(t.split("/")[0]) - 1] for t in line.split()[1:]]
+            k = f.index(min(f))
+            faces.append(tuple(f[k:] + f[:k]))
+    if not faces and not verts:
+        return None
+    return sorted(faces), sorted(verts)
+
+
+def same_output(ref, new, as_mesh):
+    if filecmp.cmp(ref, new, shallow=False):
+        return True
+    if not as_mesh:
+        return False
+    a, b = canonical_mesh(ref), canonical_mesh(new)
+    return a is not None and a == b
+
+
 def run(binary, op, a, b, out, extra):
     cmd = [binary, op, a, b, "-o", out, "--quiet", "--threads", "2"] + extra
     r = subprocess.run(cmd, capture_output=True, text=True)
@@ -178,6 +207,7 @@ def main():
     ap.add_argument("--pool-pairs", type=int, default=14)
     ap.add_argument("--seed", type=int, default=7)
     ap.add_argument("--ops", default="union,intersection,difference")
+    ap.add_argument("--same-mesh", action="store_true", help="compare triangle meshes up to face order and rotation")
     args = ap.parse_args()
     if not os.path.isdir(args.data):
         sys.exit("no data folder at %s (pass --data)" % args.data)
@@ -201,7 +231,7 @@ def main():
                 rc, err = run(args.new, op, a, b, new_out, extra)
                 if rc != 0:
                     open(new_out, "w").write("FAILED rc=%d %s\n" % (rc, err))
-                same = filecmp.cmp(ref_out, new_out, shallow=False)
+                same = same_output(ref_out, new_out, args.same_mesh and mode == "mesh")
                 bad += not same
                 print("%-8s %-40s" % ("same" if same else "DIFFERS", name), flush=True)
     print("%d of %d outputs differ" % (bad, len(cases) * len(args.ops.split(",")) * 2))

@@ -50,9 +50,11 @@ Regions two_planes_sharing_a_split_edge() {
   return r;
 }
 
+const std::vector<char> kNothingPinned(13, 0);
+
 TEST(MeshStage, CollinearVerticesAreRemovedOnBothSides) {
   Regions r = two_planes_sharing_a_split_edge();
-  const std::vector<Removal> removed = remove_collinear_vertices(r, 13);
+  const std::vector<Removal> removed = remove_collinear_vertices(r, 13, kNothingPinned);
   ASSERT_EQ(removed.size(), 2u);
   EXPECT_EQ(removed[0].v, 1u);
   EXPECT_EQ(removed[1].v, 8u);
@@ -61,19 +63,32 @@ TEST(MeshStage, CollinearVerticesAreRemovedOnBothSides) {
   EXPECT_EQ(walk(r, 2), (std::vector<std::uint32_t>{10, 11, 12}));
 }
 
+TEST(MeshStage, PinnedVerticesAreKept) {
+  // Vertex 8 is a corner of a pass-through triangle (step 2b), whose edges
+  // the regions do not see: it stays on both sides; vertex 1 still goes.
+  Regions r = two_planes_sharing_a_split_edge();
+  std::vector<char> pinned(13, 0);
+  pinned[8] = 1;
+  const std::vector<Removal> removed = remove_collinear_vertices(r, 13, pinned);
+  ASSERT_EQ(removed.size(), 1u);
+  EXPECT_EQ(removed[0].v, 1u);
+  EXPECT_EQ(walk(r, 0), (std::vector<std::uint32_t>{0, 8, 2, 3, 4}));
+  EXPECT_EQ(walk(r, 1), (std::vector<std::uint32_t>{2, 8, 0, 5, 6}));
+}
+
 TEST(MeshStage, ParallelPlanesKeepTheirVertices) {
   // The same loops with region 1 parallel to region 0 (z = 1): the shared
   // ids no longer mean a shared line between two planes; nothing is removed.
   Regions r = two_planes_sharing_a_split_edge();
   r.regions[1].plane = axis_plane(2, 1);
-  EXPECT_TRUE(remove_collinear_vertices(r, 13).empty());
+  EXPECT_TRUE(remove_collinear_vertices(r, 13, kNothingPinned).empty());
 }
 
 TEST(MeshStage, RestoringAroundAFailedRegionPutsVerticesBackOnBothSides) {
   for (const std::uint32_t failing : {0u, 1u}) {
     SCOPED_TRACE(failing);
     Regions r = two_planes_sharing_a_split_edge();
-    const std::vector<Removal> removed = remove_collinear_vertices(r, 13);
+    const std::vector<Removal> removed = remove_collinear_vertices(r, 13, kNothingPinned);
     ASSERT_EQ(removed.size(), 2u);
     std::vector<char> failed(3, 0), undone(removed.size(), 0);
     failed[failing] = 1;
@@ -91,7 +106,7 @@ TEST(MeshStage, RestoringAroundAFailedRegionPutsVerticesBackOnBothSides) {
 
 TEST(MeshStage, RestoringAroundAnUnrelatedRegionChangesNothing) {
   Regions r = two_planes_sharing_a_split_edge();
-  const std::vector<Removal> removed = remove_collinear_vertices(r, 13);
+  const std::vector<Removal> removed = remove_collinear_vertices(r, 13, kNothingPinned);
   std::vector<char> failed{0, 0, 1}, undone(removed.size(), 0);
   EXPECT_TRUE(restore_vertices(r, removed, failed, undone).empty());
   EXPECT_EQ(undone, (std::vector<char>{0, 0}));

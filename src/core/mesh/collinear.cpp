@@ -38,12 +38,13 @@ struct Incidence {
 
 }  // namespace
 
-std::vector<Removal> remove_collinear_vertices(Regions& regions, std::size_t vertex_count) {
+std::vector<Removal> remove_collinear_vertices(Regions& regions, std::size_t vertex_count,
+                                               const std::vector<char>& pinned) {
   std::vector<BoundaryEdge>& e = regions.edges;
   Incidence out(e, vertex_count, true), in(e, vertex_count, false);
   std::vector<Removal> removed;
   for (std::uint32_t v = 0; v < vertex_count; ++v) {
-    if (out.count(v) != 2 || in.count(v) != 2) continue;
+    if (out.count(v) != 2 || in.count(v) != 2 || pinned[v]) continue;
     std::uint32_t o1 = out.at(v, 0), o2 = out.at(v, 1), i1 = in.at(v, 0), i2 = in.at(v, 1);
     if (e[i1].region != e[o1].region) std::swap(i1, i2);
     const std::uint32_t r1 = e[o1].region, r2 = e[o2].region;

@@ -49,25 +49,43 @@ bool rounded_area_is_zero(const std::vector<Vec3d>& pos, std::span<const std::ui
 
 namespace {
 
-/// The indexed mesh from the regions' triangles, in region order (a region
-/// in `override_regions` takes its triangles from `overrides` instead of its
+/// The indexed mesh: the pass-through triangles (`direct`, in polygon order),
+/// then the regions' triangles in region order (a region in
+/// `override_regions` takes its triangles from `overrides` instead of its
 /// slot: piece-by-piece fallbacks and regions whose diagonals were split). Vertices are numbered by
 /// first use, as a serial pass would number them, but computed in parallel:
 /// each vertex's first use is the smallest corner position using it.
-void assemble(const Regions& regions, const std::vector<std::array<std::uint32_t, 3>>& slots,
-              const std::vector<std::size_t>& slot, const std::vector<std::uint32_t>& count,
-              const std::vector<std::uint32_t>& override_regions, const std::vector<RegionTriangles>& overrides,
-              const OutputVertices& verts, std::span<const Provenance> sources, MeshOutput& out) {
+void assemble(const RegionTriangles& direct, const Regions& regions,
+              const std::vector<std::array<std::uint32_t, 3>>& slots, const std::vector<std::size_t>& slot,
+              const std::vector<std::uint32_t>& count, const std::vector<std::uint32_t>& override_regions,
+              const std::vector<RegionTriangles>& overrides, const OutputVertices& verts,
+              std::span<const Provenance> sources, MeshOutput& out) {
   const std::size_t n_regions = regions.regions.size();
   std::vector<std::uint32_t> override_of(n_regions, UINT32_MAX);
   for (std::uint32_t i = 0; i < override_regions.size(); ++i) override_of[override_regions[i]] = i;
-  std::vector<std::size_t> first(n_regions + 1, 0);
+  std::vector<std::size_t> first(n_regions + 1, direct.tris.size());
   for (std::size_t r = 0; r < n_regions; ++r)
     first[r + 1] = first[r] + (override_of[r] != UINT32_MAX ? overrides[override_of[r]].tris.size() : count[r]);
   const std::size_t total = first[n_regions];
   std::vector<std::array<std::uint32_t, 3>> tris(total);
   out.provenance.resize(total);
   std::vector<std::uint64_t> first_use(verts.exact.size(), UINT64_MAX);
+  const auto note_use = [&](std::size_t t) {
+    for (int c = 0; c < 3; ++c) {
+      std::atomic_ref<std::uint64_t> use(first_use[tris[t][c]]);
+      const std::uint64_t here = 3 * t + static_cast<std::uint64_t>(c);
+      for (std::uint64_t seen = use.load(std::memory_order_relaxed);
+           here < seen && !use.compare_exchange_weak(seen, here, std::memory_order_relaxed);) {
+      }
+    }
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, direct.tris.size(), 1024), [&](const auto& range) {
+    for (std::size_t t = range.begin(); t != range.end(); ++t) {
+      tris[t] = direct.tris[t];
+      out.provenance[t] = sources[direct.source[t]];
+      note_use(t);
+    }
+  });
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_regions, 256), [&](const auto& range) {
     for (std::size_t r = range.begin(); r != range.end(); ++r) {
       for (std::size_t i = 0; i < first[r + 1] - first[r]; ++i) {
@@ -79,13 +97,7 @@ void assemble(const Regions& regions, const std::vector<std::array<std::uint32_t
           tris[t] = slots[slot[r] + i];
           out.provenance[t] = sources[regions.regions[r].source];
         }
-        for (int c = 0; c < 3; ++c) {
-          std::atomic_ref<std::uint64_t> use(first_use[tris[t][c]]);
-          const std::uint64_t here = 3 * t + static_cast<std::uint64_t>(c);
-          for (std::uint64_t seen = use.load(std::memory_order_relaxed);
-               here < seen && !use.compare_exchange_weak(seen, here, std::memory_order_relaxed);) {
-          }
-        }
+        note_use(t);
       }
     }
   });
@@ -125,10 +137,23 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
   const OutputVertices verts = exact_weld(polys, q, ids);
   out.stats.weld_ms = ms_since(clock);
   const VertexIndex index = index_output_vertices(polys, verts);
-  const Cycles cycles = insert_tjunction_vertices(polys, verts, index, out.stats.tjunctions);
+  const EdgePairs pairs = group_edges_by_pair(verts.corners);
+  const Cycles cycles = insert_tjunction_vertices(polys, verts, index, pairs, out.stats.tjunctions);
   out.stats.tjunction_ms = ms_since(clock);
-  Regions regions = build_regions(polys, cycles, verts);
-  const std::vector<Removal> removals = remove_collinear_vertices(regions, verts.exact.size());
+  // Whole triangles that nothing can join go straight to the output; their
+  // corners stay where they are.
+  const std::vector<char> through = pass_through_triangles(polys, verts, pairs, cycles);
+  RegionTriangles direct;
+  std::vector<char> pinned(verts.exact.size(), 0);
+  for (std::uint32_t p = 0; p < polys.size(); ++p) {
+    if (!through[p]) continue;
+    const auto c = cycles[p];
+    direct.tris.push_back(polys[p].flip ? std::array{c[0], c[2], c[1]} : std::array{c[0], c[1], c[2]});
+    direct.source.push_back(polys[p].id);
+    for (const std::uint32_t v : c) pinned[v] = 1;
+  }
+  Regions regions = build_regions(polys, cycles, verts, through);
+  const std::vector<Removal> removals = remove_collinear_vertices(regions, verts.exact.size(), pinned);
   out.stats.regions_ms = ms_since(clock);
   out.stats.regions = regions.regions.size();
 
@@ -192,7 +217,7 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
 
   // Step 5b: a diagonal may pass through a point where another part of the
   // result touches the region; such regions get their split triangles.
-  std::vector<char> used(verts.exact.size(), 0);  // atomic stores: several regions share vertices
+  std::vector<char> used = std::move(pinned);  // atomic stores: several regions share vertices
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_regions, 256), [&](const auto& range) {
     for (std::size_t r = range.begin(); r != range.end(); ++r)
       if (!failed[r])
@@ -230,7 +255,7 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
       overrides.back().source.assign(overrides.back().tris.size(), regions.regions[r].source);
     }
   }
-  assemble(regions, slots, slot, count, override_regions, overrides, verts, sources, out);
+  assemble(direct, regions, slots, slot, count, override_regions, overrides, verts, sources, out);
   out.stats.triangulate_ms = ms_since(clock);
   return out;
 }

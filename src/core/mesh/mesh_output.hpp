@@ -7,6 +7,9 @@
 //                   share it); each id is rounded to double once.
 //  2. tjunctions:   every vertex lying in the open interior of a polygon edge
 //                   is inserted into that edge (exact incidence tests).
+//  2b. pass_through: whole input triangles that gained no vertex and share no
+//                   edge with a piece of their oriented plane go straight to
+//                   the output (steps 3-4 would give them back unchanged).
 //  3. regions:      pieces in the same oriented plane that share an edge are
 //                   merged (their common edges cancel); a boundary vertex that
 //                   only joins collinear edges between the same two regions is
@@ -62,11 +65,30 @@ class VertexIndex;  // core/mesh/vertex_index.hpp
 /// Every output vertex, bucketed for searches along segments.
 VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts);
 
+/// The corner edges (corner c runs from corners.ids[c] to the next corner of
+/// its polygon) grouped by undirected id pair: every edge of a pair is the
+/// same segment, so it is searched once.
+struct EdgePairs {
+  std::vector<std::uint32_t> corner;     ///< corners sorted by (pair, corner)
+  std::vector<std::uint32_t> run_begin;  ///< pair r owns corner[run_begin[r] .. run_begin[r+1])
+  std::vector<std::uint32_t> run_of;     ///< per corner: its pair
+  std::vector<std::uint32_t> poly_of;    ///< per corner: its polygon
+};
+EdgePairs group_edges_by_pair(const Cycles& corners);
+
 /// Step 2. Per polygon (unflipped order): corners with every vertex that lies
 /// in the open interior of an edge inserted in order along it. Counts the
-/// insertions in `inserted`.
+/// insertions in `inserted`. `pairs` groups verts.corners.
 Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts,
-                                 const VertexIndex& index, std::size_t& inserted);
+                                 const VertexIndex& index, const EdgePairs& pairs, std::size_t& inserted);
+
+/// Step 2b. Per polygon, 1 if it leaves the mesh stage as it came: an
+/// unbuilt triangle (a whole input triangle) that gained no vertex in step 2
+/// and shares no edge with a piece of the same oriented plane, so that step 3
+/// would make it a region of its own and step 4 would emit it unchanged.
+/// Such triangles skip steps 3 and 4. `cycles` are step 2's.
+std::vector<char> pass_through_triangles(std::span<const OutputPolygon> polys, const OutputVertices& verts,
+                                         const EdgePairs& pairs, const Cycles& cycles);
 
 /// A region: pieces of one oriented plane joined across shared edges (its
 /// pieces are listed in Regions::piece_ids).
@@ -102,7 +124,9 @@ struct Regions {
 void piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids, std::vector<std::uint32_t>& loop);
 
 /// Step 3 (merge). `cycles` are the polygons after step 2, unflipped.
-Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles, const OutputVertices& verts);
+/// Polygons flagged in `skip` (step 2b's) are left out.
+Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles, const OutputVertices& verts,
+                      const std::vector<char>& skip);
 
 /// One removal of step 3b: vertex v spliced out of edges in_1 (region 1) and
 /// in_2 (region 2), killing out_1 and out_2.
@@ -111,7 +135,10 @@ struct Removal {
 };
 
 /// Step 3 (collinear vertices). Returns the removals in the order made.
-std::vector<Removal> remove_collinear_vertices(Regions& regions, std::size_t vertex_count);
+/// Vertices flagged in `pinned` (corners of step 2b's triangles, whose
+/// edges the regions do not see) are kept.
+std::vector<Removal> remove_collinear_vertices(Regions& regions, std::size_t vertex_count,
+                                               const std::vector<char>& pinned);
 
 /// Puts back every removal that touches a region in `failed` (and every later
 /// removal that touched the same edges), newest first, so that regions

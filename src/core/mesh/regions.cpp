@@ -235,12 +235,17 @@ void piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids, s
   if (poly.flip) std::reverse(loop.begin(), loop.end());
 }
 
-Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles, const OutputVertices& verts) {
+Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles, const OutputVertices& verts,
+                      const std::vector<char>& skip) {
   std::vector<PlaneKey> keys(polys.size());
-  tbb::parallel_for(std::size_t{0}, polys.size(),
-                    [&](std::size_t p) { keys[p] = canonical(support_of(polys[p]), polys[p].flip); });
-  std::vector<std::uint32_t> order(polys.size());
-  std::iota(order.begin(), order.end(), 0u);
+  tbb::parallel_for(std::size_t{0}, polys.size(), [&](std::size_t p) {
+    if (!skip[p]) keys[p] = canonical(support_of(polys[p]), polys[p].flip);
+  });
+  std::vector<std::uint32_t> order;
+  order.reserve(polys.size());
+  for (std::uint32_t p = 0; p < polys.size(); ++p)
+    if (!skip[p]) order.push_back(p);
+  const auto kept = static_cast<std::uint32_t>(order.size());
   tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
     return keys[x] < keys[y] || (keys[x] == keys[y] && x < y);
   });
@@ -290,9 +295,9 @@ Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles
   out.edge_begin.back() = edge_count[groups];
   // A group's pieces are its members, so its regions' piece lists fill
   // piece_ids[group_begin[g] .. group_begin[g+1]).
-  out.piece_ids.resize(polys.size());
+  out.piece_ids.resize(kept);
   out.piece_begin.resize(region_count[groups] + 1);
-  out.piece_begin.back() = static_cast<std::uint32_t>(polys.size());
+  out.piece_begin.back() = kept;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 64), [&](const auto& range) {
     std::vector<std::uint32_t> loop, scratch, slot;
     for (std::size_t g = range.begin(); g != range.end(); ++g) {

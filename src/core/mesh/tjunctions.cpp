@@ -1,23 +1,22 @@
 // Step 2 of the mesh stage: insert every output vertex that lies in the open
 // interior of a polygon edge into that edge.
 //
-// Only the end points of edges whose uses do not balance are candidates. Why
-// that suffices: the exact result's boundary is a cycle, so at every point of
-// a line the edges covering it run as often one way as the other. Edges that
-// join the same two ids a->b as often as b->a contribute nothing anywhere, so
-// the unbalanced edges alone cancel along every line; split at all of their
-// own end points, they become sub-edges between consecutive such points,
-// which therefore balance id pair by id pair. Every edge, balanced or not, is
-// tested against the candidates, so an end point that lies inside a balanced
-// pair (a non-manifold line, where more sheets meet) is inserted there too.
-// On a typical result a few percent of the vertices are candidates, which
-// keeps the search cheap: most queries find an empty cell.
+// Every output vertex is a candidate for every edge. The end points of edges
+// whose uses do not balance would be enough for a balanced (closed) mesh: the
+// exact result's boundary is a cycle, so along every line the unbalanced
+// edges alone cancel, and split at all of their own end points they balance
+// id pair by id pair. But a vertex where another sheet touches an edge (a
+// non-manifold contact: an apex resting on an edge, even one between two
+// whole input triangles) is no such end point, and it must be inserted too
+// for the mesh to have no vertex inside any edge.
 //
 // Candidates come from the rounded positions: rounding is correctly rounded
 // and hence monotone per coordinate, so a point exactly between two others
-// rounds into the box of their rounded positions (no epsilon needed). Each
-// candidate is then tested exactly: on the support plane, collinear with the
-// edge's end points in the plane's projection, and strictly between them.
+// rounds into the box of their rounded positions (no epsilon needed). A
+// floating-point filter with a proven margin (clearly_off_segment) drops the
+// ones that are plainly off the line; the rest are tested exactly: on the
+// support plane, collinear with the edge's end points in the plane's
+// projection, and strictly between them.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -84,15 +83,7 @@ void edge_interior_vertices(const Plane& support, std::uint32_t a, std::uint32_t
 }
 
 
-/// The corner edges (corner c runs from corners.ids[c] to the next corner of
-/// its polygon) grouped by undirected id pair: every edge of a pair is the
-/// same segment, so it is searched once.
-struct EdgePairs {
-  std::vector<std::uint32_t> corner;     ///< corners sorted by (pair, corner)
-  std::vector<std::uint32_t> run_begin;  ///< pair r owns corner[run_begin[r] .. run_begin[r+1])
-  std::vector<std::uint32_t> run_of;     ///< per corner: its pair
-  std::vector<std::uint32_t> poly_of;    ///< per corner: its polygon
-};
+}  // namespace
 
 EdgePairs group_edges_by_pair(const Cycles& corners) {
   const std::size_t n = corners.ids.size();
@@ -122,7 +113,6 @@ EdgePairs group_edges_by_pair(const Cycles& corners) {
   return g;
 }
 
-}  // namespace
 
 VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts) {
   std::vector<std::uint32_t> everyone(verts.exact.size());
@@ -131,9 +121,8 @@ VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const Ou
 }
 
 Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts,
-                                 const VertexIndex& index, std::size_t& inserted) {
+                                 const VertexIndex& index, const EdgePairs& pairs, std::size_t& inserted) {
   const Cycles& corners = verts.corners;
-  const EdgePairs pairs = group_edges_by_pair(corners);
   // Per pair: the vertices inside its segment, ordered from the pair's first
   // corner's start vertex (most pairs have none and allocate nothing).
   const std::size_t runs = pairs.run_begin.size() - 1;
