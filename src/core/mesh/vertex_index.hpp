@@ -58,6 +58,8 @@ class VertexIndex {
     const double extent = std::max({hi_.x - lo_.x, hi_.y - lo_.y, hi_.z - lo_.z});
     cell_ = std::max(mean_edge, extent * 0x1p-20);
     if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = 1;
+    inverse_cell_ = 1 / cell_;
+    if (!std::isfinite(inverse_cell_)) inverse_cell_ = 0x1p1000;  // a subnormal cell: cells clamp to the grid's edge
     const auto n = static_cast<std::uint32_t>(pos_.size());
     cells_.resize(n);
     for (std::uint32_t i = 0; i < n; ++i) cells_[i] = {key(cell_of(pos_[i])), i};
@@ -133,11 +135,12 @@ class VertexIndex {
   }
 
  private:
-  /// Monotone in each coordinate (floating subtraction and division by a
-  /// positive constant are monotone), so a box's cells bracket its points'.
+  /// Monotone in each coordinate (floating subtraction and multiplication by
+  /// a positive constant are monotone), so a box's cells bracket its points'.
+  /// Clamped to [0, 2^20 - 1] first, where truncation is floor.
   std::array<std::int64_t, 3> cell_of(const Vec3d& p) const {
     auto c = [&](double x, double l) {
-      return static_cast<std::int64_t>(std::clamp(std::floor((x - l) / cell_), 0.0, double{(1 << 20) - 1}));
+      return static_cast<std::int64_t>(std::clamp((x - l) * inverse_cell_, 0.0, double{(1 << 20) - 1}));
     };
     return {c(p.x, lo_.x), c(p.y, lo_.y), c(p.z, lo_.z)};
   }
@@ -149,7 +152,7 @@ class VertexIndex {
   std::vector<std::uint32_t> ids_;  ///< member i is output vertex ids_[i]
   std::vector<Vec3d> pos_;
   Vec3d lo_{}, hi_{};
-  double cell_ = 1;
+  double cell_ = 1, inverse_cell_ = 1;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> cells_;  ///< (cell key, member), sorted
   struct Slot {
     std::uint64_t key = 0;
