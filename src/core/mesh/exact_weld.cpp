@@ -130,19 +130,27 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
       }
     }
   });
-  // Input vertex items, numbered in id order after the built corners; from
-  // here on first_corner[v] holds v's item.
+  // Input vertex items, numbered in id order after the built corners (a scan
+  // for the numbers, then the keys in parallel); from here on first_corner[v]
+  // holds v's item.
+  std::vector<std::uint32_t> item_of_vertex(layout.first_corner.size());
   for (std::uint32_t v = 0, at = built; v < layout.first_corner.size(); ++v) {
-    std::uint32_t& f = layout.first_corner[v];
-    if (f == kNone) continue;
-    const std::uint32_t c = f;
-    const auto poly = static_cast<std::uint32_t>(std::upper_bound(corners.offsets.begin(), corners.offsets.end(), c) -
-                                                 corners.offsets.begin() - 1);
-    const IntPoint g = (*polys[poly].corners)[c - corners.offsets[poly]];
-    item[at] = {g, poly, c - corners.offsets[poly], c, true};
-    key_of(at, c, g, nullptr);
-    f = at++;
+    item_of_vertex[v] = at;
+    at += layout.first_corner[v] != kNone;
   }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layout.first_corner.size(), 4096), [&](const auto& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      std::uint32_t& f = layout.first_corner[v];
+      if (f == kNone) continue;
+      const std::uint32_t c = f, at = item_of_vertex[v];
+      const auto poly = static_cast<std::uint32_t>(
+          std::upper_bound(corners.offsets.begin(), corners.offsets.end(), c) - corners.offsets.begin() - 1);
+      const IntPoint g = (*polys[poly].corners)[c - corners.offsets[poly]];
+      item[at] = {g, poly, c - corners.offsets[poly], c, true};
+      key_of(at, c, g, nullptr);
+      f = at;
+    }
+  });
   tbb::parallel_sort(keys.begin(), keys.end());
 
   // Per item, its class's representative: the smallest corner of the class
