@@ -22,7 +22,6 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
-#include <atomic>
 #include <numeric>
 #include <optional>
 #include <tuple>
@@ -80,13 +79,8 @@ CornerLayout lay_out_corners(std::span<const OutputPolygon> polys, const Cycles&
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 1024), [&](const auto& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       if (!folded(polys[i], ids)) continue;
-      for (std::uint32_t k = 0; k < 3; ++k) {
-        std::atomic_ref<std::uint32_t> first(l.first_corner[input_vertex(polys[i], k, *ids)]);
-        const std::uint32_t here = corners.offsets[i] + k;
-        for (std::uint32_t seen = first.load(std::memory_order_relaxed);
-             here < seen && !first.compare_exchange_weak(seen, here, std::memory_order_relaxed);) {
-        }
-      }
+      for (std::uint32_t k = 0; k < 3; ++k)
+        atomic_min(l.first_corner[input_vertex(polys[i], k, *ids)], corners.offsets[i] + k);
     }
   });
   return l;
@@ -106,11 +100,14 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
   const std::size_t n = corners.offsets.back();
   CornerLayout layout = lay_out_corners(polys, corners, ids);
 
-  // Items: the built corners (in output order), then the input vertices in use.
-  const std::uint32_t built = layout.built_before.back();
-  std::uint32_t items = built;
-  for (std::uint32_t& f : layout.first_corner)
-    if (f != kNone) ++items;
+  // Items: the built corners (in output order), then the input vertices in
+  // use, numbered in id order (a scan).
+  std::vector<std::uint32_t> item_of_vertex(layout.first_corner.size());
+  std::uint32_t items = layout.built_before.back();
+  for (std::uint32_t v = 0; v < layout.first_corner.size(); ++v) {
+    item_of_vertex[v] = items;
+    items += layout.first_corner[v] != kNone;
+  }
   std::vector<Item> item(items);
   std::vector<ItemKey> keys(items);
   auto key_of = [&](std::uint32_t i, std::uint32_t corner, const std::optional<IntPoint>& g, const Point* exact) {
@@ -130,14 +127,7 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
       }
     }
   });
-  // Input vertex items, numbered in id order after the built corners (a scan
-  // for the numbers, then the keys in parallel); from here on first_corner[v]
-  // holds v's item.
-  std::vector<std::uint32_t> item_of_vertex(layout.first_corner.size());
-  for (std::uint32_t v = 0, at = built; v < layout.first_corner.size(); ++v) {
-    item_of_vertex[v] = at;
-    at += layout.first_corner[v] != kNone;
-  }
+  // The input vertex items; from here on first_corner[v] holds v's item.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layout.first_corner.size(), 4096), [&](const auto& r) {
     for (std::size_t v = r.begin(); v != r.end(); ++v) {
       std::uint32_t& f = layout.first_corner[v];

@@ -71,13 +71,7 @@ void assemble(const RegionTriangles& direct, const Regions& regions,
   out.provenance.resize(total);
   std::vector<std::uint64_t> first_use(verts.exact.size(), UINT64_MAX);
   const auto note_use = [&](std::size_t t) {
-    for (int c = 0; c < 3; ++c) {
-      std::atomic_ref<std::uint64_t> use(first_use[tris[t][c]]);
-      const std::uint64_t here = 3 * t + static_cast<std::uint64_t>(c);
-      for (std::uint64_t seen = use.load(std::memory_order_relaxed);
-           here < seen && !use.compare_exchange_weak(seen, here, std::memory_order_relaxed);) {
-      }
-    }
+    for (int c = 0; c < 3; ++c) atomic_min(first_use[tris[t][c]], 3 * t + static_cast<std::uint64_t>(c));
   };
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, direct.tris.size(), 1024), [&](const auto& range) {
     for (std::size_t t = range.begin(); t != range.end(); ++t) {

@@ -18,6 +18,7 @@
 //                   orientation tests in its plane's projection.
 // Everything is decided on exact points; no epsilon anywhere.
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -27,6 +28,17 @@
 #include "ember/core/quantize.hpp"
 
 namespace ember::core {
+
+/// Lowers `slot` to `value` if that is smaller, safely against concurrent
+/// callers (relaxed: only the final minimum is read, after the parallel loop).
+/// The mesh stage's "first use" numbers are such minima.
+template <typename T>
+void atomic_min(T& slot, T value) {
+  std::atomic_ref<T> ref(slot);
+  for (T seen = ref.load(std::memory_order_relaxed);
+       value < seen && !ref.compare_exchange_weak(seen, value, std::memory_order_relaxed);) {
+  }
+}
 
 /// Flat cyclic vertex lists: polygon p is ids[offsets[p] .. offsets[p+1]).
 struct Cycles {
