@@ -25,23 +25,15 @@ namespace {
 
 std::uint64_t pair_key(std::uint64_t a, std::uint64_t b) { return (std::min(a, b) << 32) | std::max(a, b); }
 
-/// The outward normal of a piece: its input triangle's grid normal (the same
-/// vector as its support plane's), negated when the piece is emitted flipped.
-std::array<std::int64_t, 3> oriented_normal(const OutputPolygon& p) {
+/// The outward normal of a piece as a plane through the origin (only the
+/// normal is read): its input triangle's grid normal, the same vector as its
+/// support plane's, negated when the piece is emitted flipped. Cheaper than
+/// support_of, which also forms the offset.
+Plane oriented_normal(const OutputPolygon& p) {
   const std::array<IntPoint, 3>& c = *p.corners;
-  std::array<std::int64_t, 3> n = grid_normal(c[0], c[1], c[2]);
-  if (p.flip) n = {-n[0], -n[1], -n[2]};
-  return n;
-}
-
-/// Parallel and pointing the same way. Components are below 2^53 (grid_normal),
-/// so every product is below 2^106 and a sum of three below 2^108: __int128.
-bool same_direction(const std::array<std::int64_t, 3>& a, const std::array<std::int64_t, 3>& b) {
-  using i128 = __int128;
-  if (i128(a[1]) * b[2] != i128(a[2]) * b[1] || i128(a[2]) * b[0] != i128(a[0]) * b[2] ||
-      i128(a[0]) * b[1] != i128(a[1]) * b[0])
-    return false;
-  return i128(a[0]) * b[0] + i128(a[1]) * b[1] + i128(a[2]) * b[2] > 0;
+  const std::array<std::int64_t, 3> n = grid_normal(c[0], c[1], c[2]);
+  const Plane plane{n[0], n[1], n[2], 0};
+  return p.flip ? -plane : plane;
 }
 
 /// The edges that step 2 created (sub-edges of the polygons that gained a
@@ -69,8 +61,12 @@ std::vector<char> pass_through_triangles(std::span<const OutputPolygon> polys, c
     for (std::size_t t = range.begin(); t != range.end(); ++t) {
       const OutputPolygon& tri = polys[t];
       if (!unbuilt(tri) || cycles[t].size() != 3) continue;
-      const std::array<std::int64_t, 3> normal = oriented_normal(tri);
-      const auto joins = [&](std::uint32_t q) { return q != t && same_direction(normal, oriented_normal(polys[q])); };
+      const Plane normal = oriented_normal(tri);
+      const auto joins = [&](std::uint32_t q) {
+        if (q == t) return false;
+        const Plane other = oriented_normal(polys[q]);
+        return parallel(normal, other) && same_orientation(normal, other);
+      };
       bool alone = true;
       const auto ids = cycles[t];
       for (std::uint32_t k = 0; k < 3 && alone; ++k) {
