@@ -7,6 +7,7 @@
 #include <numeric>
 #include <span>
 
+#include "core/edge_windings.hpp"
 #include "core/solve.hpp"
 #include "core/trace.hpp"
 #include "ember/numbers/divide.hpp"
@@ -614,6 +615,8 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
     piece.splits = t.splits;
     out.push_back(std::move(piece));
   };
+  EdgeWindings known(ctx.closed, pb.box);
+  std::vector<char> need_front(ctx.operands), need_back(ctx.operands), all(ctx.operands, 1);
   for (const SoupPolygon& t : pb.soup) {
     const std::size_t ti = static_cast<std::size_t>(&t - pb.soup.data());
     const bool uncovered = disable_covered(
@@ -622,6 +625,17 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
     if (pieces.empty()) continue;
     gather(pb.soup, t, ctx, class_begin, scratch);
     const bool face = on_box_face(t, pb.box);
+    // Neighbours across input edges hand over their winding numbers
+    // (edge_windings.hpp), except in a box face, where one side of t is
+    // outside the box.
+    const bool share = ctx.share_edge_windings && !face;
+    if (share) {
+      known.begin_polygon(pb.soup, t, scratch.related);
+      for (std::size_t o = 0; o < ctx.operands; ++o) {
+        need_front[o] = scratch.free_front[o] != scratch.stamp;
+        need_back[o] = scratch.free_back[o] != scratch.stamp;
+      }
+    }
     // Piece-level early termination (Section 4.5.2 applied to one polygon):
     // if the operands whose winding numbers can change along either side of t
     // cannot change the result there, one trace classifies the whole piece and
@@ -635,14 +649,20 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
     const std::size_t n_pieces = pieces.size();
     for (std::size_t n = 0; n < n_pieces; ++n) {
       const std::uint64_t seed = (static_cast<std::uint64_t>(t.id) << 20) ^ (n << 10);
-      bool traced = false;
+      // w_front / w_back hold for every operand over the whole piece: a trace
+      // to a point of it, or a neighbour's values that hold for all operands.
+      bool exact = false;
       if (maybe_constant) {
-        classify_or_throw(t, pieces[n].poly, seed);
-        traced = true;
+        // Only the operands that are not free on a side matter here.
+        if (!(share && known.find(pieces[n].poly, need_front, need_back, w_front, w_back, exact))) {
+          classify_or_throw(t, pieces[n].poly, seed);
+          exact = true;
+        }
         const int vf = side_value(ctx, w_front, scratch.free_front, scratch.stamp, scratch.n_front);
         const int vb = side_value(ctx, w_back, scratch.free_back, scratch.stamp, scratch.n_back);
         if (vf >= 0 && vb >= 0) {
           emit(t, pieces[n].poly, vf != 0, vb != 0, uncovered);
+          if (share) known.record(pieces[n].poly, w_front, w_back, need_front, need_back);
           continue;
         }
       }
@@ -651,9 +671,12 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
       sub[0].poly = pieces[n].poly;
       refine(pb.soup, t, ctx, face, scratch, sub);
       for (std::size_t m = 0; m < sub.size(); ++m) {
-        // Uncut: the trace made for the early termination still holds.
-        if (!(traced && sub.size() == 1)) classify_or_throw(t, sub[m].poly, seed + m);
+        // Uncut: the values found for the early termination still hold.
+        bool full = exact && sub.size() == 1;
+        if (!full && share) full = known.find(sub[m].poly, all, all, w_front, w_back, full) && full;
+        if (!full) classify_or_throw(t, sub[m].poly, seed + m);
         emit(t, sub[m].poly, ctx.inside(w_front), ctx.inside(w_back), uncovered && sub.size() == 1);
+        if (share) known.record(sub[m].poly, w_front, w_back, all, all);
       }
     }
   }

@@ -78,6 +78,10 @@ struct SolveContext {
   /// touching components: w in {0, 1}). Enables the shortcuts of Fig. 11.
   std::vector<char> solid;
   std::size_t leaf_size = 64;  ///< subdivide while a subproblem has more polygons (tuned: docs/benchmark.md)
+  /// Leaves hand winding numbers across shared input edges instead of
+  /// tracing every piece (edge_windings.hpp). Off only in tests that compare
+  /// the two.
+  bool share_edge_windings = true;
 
   /// inside_over_free for the built-in operation; -1 (may change) for a
   /// custom indicator.

@@ -1,0 +1,142 @@
+// Winding numbers across shared input edges inside a leaf (see the header for
+// why they are exact).
+#include "core/edge_windings.hpp"
+
+#include <algorithm>
+
+#include "ember/geometry/exact_order.hpp"
+
+namespace ember::core {
+
+std::size_t EdgeWindings::KeyHash::operator()(const EdgeKey& k) const {
+  std::uint64_t h = 0x9E3779B97F4A7C15ull;
+  for (const std::int64_t v : {k.a.x, k.a.y, k.a.z, k.b.x, k.b.y, k.b.z}) {
+    h ^= static_cast<std::uint64_t>(v) + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+  }
+  return static_cast<std::size_t>(h ^ (h >> 31));
+}
+
+void EdgeWindings::begin_polygon(const Soup& soup, const SoupPolygon& t, std::span<const std::uint32_t> related) {
+  soup_ = &soup;
+  t_ = &t;
+  t_index_ = static_cast<std::uint32_t>(&t - soup.data());
+  related_ = related;
+  const std::array<IntPoint, 3>& c = *t.corners;
+  for (int k = 0; k < 3; ++k) edges_[k] = {edge_plane(c[k], c[(k + 1) % 3], t.poly->support), kUnknown, 0};
+}
+
+int EdgeWindings::input_edge_of(const Plane& edge) const {
+  for (int k = 0; k < 3; ++k)
+    if (edges_[k].plane == edge) return k;
+  return -1;
+}
+
+/// Finds the polygons of `related` that contain a stretch of input edge k's
+/// line near the edge (both end points on their plane, boxes overlapping).
+/// An edge in a face plane of the box is blocked outright: polygons beyond
+/// that face can touch it and are not in the leaf.
+void EdgeWindings::classify_edge(int k) {
+  InputEdge& e = edges_[k];
+  const std::array<IntPoint, 3>& c = *t_->corners;
+  const IntPoint& a = c[k];
+  const IntPoint& b = c[(k + 1) % 3];
+  const std::array<std::int64_t, 3> pa{a.x, a.y, a.z}, pb{b.x, b.y, b.z};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (pa[axis] == pb[axis] && (pa[axis] == box_.lo[axis] || pa[axis] == box_.hi[axis])) {
+      e.state = kBlocked;
+      return;
+    }
+  }
+  std::size_t count = 0;
+  for (const std::uint32_t i : related_) {
+    const SoupPolygon& o = (*soup_)[i];
+    bool apart = false;
+    for (int axis = 0; axis < 3 && !apart; ++axis) {
+      const auto lo = static_cast<double>(std::min(pa[axis], pb[axis]));
+      const auto hi = static_cast<double>(std::max(pa[axis], pb[axis]));
+      apart = o.hi[axis] < lo || o.lo[axis] > hi;  // o's box is conservative
+    }
+    if (apart || classify(a, o.poly->support) != 0 || classify(b, o.poly->support) != 0) continue;
+    if (count++ == 0) e.blocker = i;
+  }
+  e.state = count == 0 ? kOpen : (count == 1 ? kBlockedByOne : kBlocked);
+}
+
+/// Whether entry e (a piece edge on input edge k's line, recorded from the
+/// other side) can hand its winding numbers to the current piece's edge
+/// from -> to on that line.
+bool EdgeWindings::usable(const Entry& e, int k, const Point& from, const Point& to) const {
+  const SoupPolygon& s = (*soup_)[e.source];
+  if (s.operand != t_->operand) return false;
+  const InputEdge& edge = edges_[k];
+  if (edge.state == kBlocked || (edge.state == kBlockedByOne && edge.blocker != e.source)) return false;
+  // A coplanar neighbour must face the same way (it then lies across the
+  // edge; facing the other way it would fold back over t).
+  const Plane& S = t_->poly->support;
+  if (coplanar(S, s.poly->support) && !same_orientation(S, s.poly->support)) return false;
+  // Positive overlap along the line: [e.to, e.from] against [from, to] in the
+  // direction from -> to, along an axis in which the line's end points differ.
+  const std::array<IntPoint, 3>& c = *t_->corners;
+  const IntPoint& a = c[k];
+  const IntPoint& b = c[(k + 1) % 3];
+  const std::array<std::int64_t, 3> d{b.x - a.x, b.y - a.y, b.z - a.z};
+  int axis = 0;
+  while (d[axis] == 0) ++axis;  // a != b
+  const int dir = d[axis] > 0 ? 1 : -1;
+  const auto before = [&](const Point& p, const Point& q) { return compare_coord(p, q, axis) * dir < 0; };
+  return before(e.to, to) && before(from, e.from);
+}
+
+bool EdgeWindings::find(const Polygon& f, std::span<const char> need_front, std::span<const char> need_back,
+                        Wnv& front, Wnv& back, bool& full) {
+  const std::array<IntPoint, 3>& c = *t_->corners;
+  const std::size_t n = f.vertices.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const int k = input_edge_of(f.edges[i]);
+    if (k < 0) continue;
+    if (edges_[k].state == kUnknown) classify_edge(k);
+    if (edges_[k].state == kBlocked) continue;
+    const auto it = head_.find(EdgeKey{c[(k + 1) % 3], c[k]});  // recorded from the other side
+    if (it == head_.end()) continue;
+    for (std::uint32_t x = it->second; x != UINT32_MAX; x = entries_[x].next) {
+      const Entry& e = entries_[x];
+      const std::size_t at = 2 * operands_ * e.winding;
+      const char* valid = valid_.data() + at;
+      bool covers = true, all = true;
+      for (std::size_t o = 0; o < operands_; ++o) {
+        covers &= (!need_front[o] || valid[o]) && (!need_back[o] || valid[operands_ + o]);
+        all &= valid[o] && valid[operands_ + o];
+      }
+      if (!covers || !usable(e, k, f.vertices[i], f.vertices[(i + 1) % n])) continue;
+      front.assign(windings_.begin() + at, windings_.begin() + at + operands_);
+      back.assign(windings_.begin() + at + operands_, windings_.begin() + at + 2 * operands_);
+      full = all;
+      return true;
+    }
+  }
+  return false;
+}
+
+void EdgeWindings::record(const Polygon& f, const Wnv& front, const Wnv& back, std::span<const char> valid_front,
+                          std::span<const char> valid_back) {
+  const std::array<IntPoint, 3>& c = *t_->corners;
+  const std::size_t n = f.vertices.size();
+  const auto winding = static_cast<std::uint32_t>(windings_.size() / (2 * operands_));
+  bool stored = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int k = input_edge_of(f.edges[i]);
+    if (k < 0) continue;
+    const auto x = static_cast<std::uint32_t>(entries_.size());
+    auto [it, fresh] = head_.try_emplace(EdgeKey{c[k], c[(k + 1) % 3]}, x);
+    entries_.push_back({f.vertices[i], f.vertices[(i + 1) % n], t_index_, winding, fresh ? UINT32_MAX : it->second});
+    it->second = x;
+    stored = true;
+  }
+  if (!stored) return;
+  windings_.insert(windings_.end(), front.begin(), front.end());
+  windings_.insert(windings_.end(), back.begin(), back.end());
+  for (const std::span<const char> valid : {valid_front, valid_back})
+    for (std::size_t o = 0; o < operands_; ++o) valid_.push_back(valid[o] && closed_[o]);
+}
+
+}  // namespace ember::core

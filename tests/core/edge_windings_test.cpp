@@ -1,0 +1,184 @@
+// Leaves hand winding numbers across shared input edges (core/edge_windings.hpp)
+// instead of tracing every piece. The oracle is the leaf that traces every
+// piece: both must emit exactly the same pieces with the same orientation.
+// Each scene is solved as one leaf (every polygon sees every other), where
+// the most values are handed on.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/indicator.hpp"
+#include "core/solve.hpp"
+#include "ember/geometry/exact_order.hpp"
+#include "support/shapes.hpp"
+
+namespace ember::core {
+namespace {
+
+using Tri = std::array<IntPoint, 3>;
+
+struct Scene {
+  std::vector<Tri> tris;
+  std::vector<std::uint32_t> operand;
+  std::size_t operands = 0;
+  std::vector<char> closed;  ///< per operand
+};
+
+/// Adds a mesh's faces (fanned) on the integer grid, scaled and rounded;
+/// faces that rounding makes collinear are dropped.
+void add(Scene& s, const Mesh& m, double scale, bool closed = true) {
+  const auto o = static_cast<std::uint32_t>(s.operands++);
+  s.closed.push_back(closed ? 1 : 0);
+  auto grid = [&](std::uint32_t v) {
+    const Vec3d& p = m.vertices[v];
+    return IntPoint{std::llround(p.x * scale), std::llround(p.y * scale), std::llround(p.z * scale)};
+  };
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    const auto face = m.face(f);
+    for (std::size_t k = 1; k + 1 < face.size(); ++k) {
+      const Tri t{grid(face[0]), grid(face[k]), grid(face[k + 1])};
+      if (!supporting_plane(t[0], t[1], t[2])) continue;
+      s.tris.push_back(t);
+      s.operand.push_back(o);
+    }
+  }
+}
+
+std::vector<OutputPolygon> solve_as_one_leaf(const Scene& s, Operation op, const std::vector<char>& solid, bool share) {
+  Subproblem pb;
+  pb.box.lo = {INT64_MAX, INT64_MAX, INT64_MAX};
+  pb.box.hi = {INT64_MIN, INT64_MIN, INT64_MIN};
+  for (const Tri& t : s.tris)
+    for (const IntPoint& c : t) {
+      const std::array<std::int64_t, 3> p{c.x, c.y, c.z};
+      for (int a = 0; a < 3; ++a) {
+        pb.box.lo[a] = std::min(pb.box.lo[a], p[a] - 1);
+        pb.box.hi[a] = std::max(pb.box.hi[a], p[a] + 1);
+      }
+    }
+  for (int a = 0; a < 3; ++a) pb.ref.num[a] = 2 * pb.box.lo[a] + 1;  // a corner of the box: outside everything
+  pb.ref.shift = 1;
+  pb.ref_w.assign(s.operands, 0);
+  for (std::uint32_t i = 0; i < s.tris.size(); ++i) {
+    pb.soup.push_back(unbuilt_triangle(s.tris[i], i, s.operand[i]));
+    materialize(pb.soup.back());
+  }
+  SolveContext ctx;
+  ctx.operands = s.operands;
+  ctx.op = op;
+  ctx.inside = [&](const Wnv& w) {
+    std::size_t count = 0;
+    for (const int x : w) count += x != 0;
+    return inside_by_count(op, 1, w.size(), count, w[0] != 0);
+  };
+  ctx.solid = solid;
+  ctx.closed = s.closed;
+  ctx.share_edge_windings = share;
+  std::vector<OutputPolygon> out;
+  solve_leaf(pb, ctx, out);
+  return out;
+}
+
+/// Solves the scene with and without shared windings and compares.
+void expect_same_leaf(const Scene& s, Operation op, const std::vector<char>& solid) {
+  SCOPED_TRACE("operation " + std::to_string(static_cast<int>(op)) + ", solid flags " +
+               std::to_string(solid[0]) + "..");
+  const std::vector<OutputPolygon> traced = solve_as_one_leaf(s, op, solid, false);
+  const std::vector<OutputPolygon> shared = solve_as_one_leaf(s, op, solid, true);
+  ASSERT_FALSE(traced.empty());
+  ASSERT_EQ(shared.size(), traced.size());
+  for (std::size_t i = 0; i < traced.size(); ++i) {
+    const OutputPolygon &a = traced[i], &b = shared[i];
+    ASSERT_EQ(a.id, b.id) << "piece " << i;
+    EXPECT_EQ(a.flip, b.flip) << "piece " << i << " of triangle " << a.id << " is oriented differently";
+    EXPECT_EQ(a.whole_piece, b.whole_piece) << "piece " << i;
+    ASSERT_EQ(a.vertices.size(), b.vertices.size()) << "piece " << i;
+    for (std::size_t v = 0; v < a.vertices.size(); ++v) EXPECT_TRUE(same_point(a.vertices[v], b.vertices[v]));
+  }
+}
+
+constexpr Operation kOps[] = {Operation::Union, Operation::Intersection, Operation::Difference, Operation::Xor};
+
+TEST(EdgeWindings, TwoSpheresSolidAndGeneral) {
+  Scene s;
+  add(s, test::icosphere({0, 0, 0}, 1, 2), 1000);
+  add(s, test::icosphere({0.55, 0.3, 0.2}, 0.9, 2), 1000);
+  for (const Operation op : kOps) {
+    expect_same_leaf(s, op, {1, 1});
+    expect_same_leaf(s, op, {0, 0});
+    expect_same_leaf(s, op, {1, 0});
+  }
+}
+
+TEST(EdgeWindings, BoxesWithSharedFacesAndEdges) {
+  // A tessellated box, a box sharing part of its top face plane and a box
+  // touching it along an edge line only: coplanar overlaps and edges on
+  // which more than two sheets meet.
+  Scene s;
+  add(s, test::tessellated_box({0, 0, 0}, {1, 1, 1}, 4), 1024);
+  add(s, test::merge({test::box({0.25, 0.25, 0.5}, {0.75, 0.75, 1}), test::box({1, 1, 0}, {1.5, 1.5, 1})}), 1024);
+  for (const Operation op : kOps) {
+    expect_same_leaf(s, op, {0, 0});
+    expect_same_leaf(s, op, {1, 1});
+  }
+}
+
+TEST(EdgeWindings, ThreeOperandsAndAnOpenSheet) {
+  Scene s;
+  add(s, test::icosphere({0, 0, 0}, 1, 2), 1000);
+  add(s, test::tessellated_box({-0.3, -0.3, -0.3}, {1.2, 0.4, 0.5}, 3), 1000);
+  add(s, test::icosphere({-0.4, 0.2, 0.1}, 0.8, 1), 1000);
+  for (const Operation op : kOps) {
+    expect_same_leaf(s, op, {0, 0, 0});
+    expect_same_leaf(s, op, {1, 1, 1});
+  }
+  Scene open;
+  add(open, test::icosphere({0, 0, 0}, 1, 2), 1000);
+  // One face of a box: an open sheet through the sphere.
+  Mesh sheet = test::tessellated_box({-1.5, -1.5, 0.1}, {1.5, 1.5, 0.1 + 1e-3}, 3);
+  Mesh top;
+  for (std::size_t f = 0; f < sheet.face_count(); ++f) {
+    bool up = true;
+    for (const std::uint32_t v : sheet.face(f)) up &= sheet.vertices[v].z > 0.1 + 5e-4;
+    if (!up) continue;
+    std::vector<std::uint32_t> ids;
+    for (const std::uint32_t v : sheet.face(f)) ids.push_back(top.add_vertex(sheet.vertices[v]));
+    top.add_face(ids);
+  }
+  add(open, top, 1000, false);
+  for (const Operation op : kOps) expect_same_leaf(open, op, {0, 0});
+}
+
+TEST(EdgeWindings, SliverFan) {
+  // Long thin triangles side by side (a fan around a far apex on each face
+  // of a prism) crossed by a box: the pile shape the sharing is for.
+  Scene s;
+  Mesh prism;
+  constexpr int kStrips = 24;
+  const double len = 40;
+  for (int i = 0; i < kStrips; ++i) {
+    const double a = 2 * M_PI * i / kStrips;
+    prism.add_vertex({0, std::cos(a), std::sin(a)});
+    prism.add_vertex({len, std::cos(a + 0.02), std::sin(a + 0.02)});
+  }
+  for (int i = 0; i < kStrips; ++i) {
+    const auto p = static_cast<std::uint32_t>(2 * i), q = static_cast<std::uint32_t>(2 * ((i + 1) % kStrips));
+    prism.add_face({p, q, q + 1});
+    prism.add_face({p, q + 1, p + 1});
+  }
+  // Caps (fans around the first vertex of each ring).
+  for (int i = 1; i + 1 < kStrips; ++i) {
+    prism.add_face({0, static_cast<std::uint32_t>(2 * (i + 1)), static_cast<std::uint32_t>(2 * i)});
+    prism.add_face({1, static_cast<std::uint32_t>(2 * i + 1), static_cast<std::uint32_t>(2 * (i + 1) + 1)});
+  }
+  add(s, prism, 256);
+  add(s, test::box({10, -0.5, -2}, {20, 0.5, 2}), 256);
+  for (const Operation op : kOps) {
+    expect_same_leaf(s, op, {0, 0});
+    expect_same_leaf(s, op, {1, 1});
+  }
+}
+
+}  // namespace
+}  // namespace ember::core
