@@ -8,6 +8,7 @@
 #include <span>
 
 #include "core/edge_windings.hpp"
+#include "core/frame_boxes.hpp"
 #include "core/solve.hpp"
 #include "core/trace.hpp"
 #include "ember/numbers/divide.hpp"
@@ -172,6 +173,10 @@ struct LeafScratch {
   /// The leaf soup's approximations (soup.hpp) for the filters of gather and
   /// of the traces; empty outside solve_leaf and in small leaves.
   SoupApprox approx;
+  /// Pile leaves only: boxes in the leaf's principal frame (frame_boxes.hpp),
+  /// which separate slivers that all share one axis-aligned box.
+  FrameBoxes frame;
+  std::vector<std::uint32_t> candidates;  ///< the frame grid's answer for t
 };
 
 /// True when every vertex approximation lies clearly on one side of the
@@ -209,7 +214,8 @@ bool on_box_face(const SoupPolygon& t, const Box& box) {
 /// `direction[i]` names polygon i's class of parallel planes.
 void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, const std::vector<std::uint32_t>& direction,
             LeafScratch& sc) {
-  const std::uint32_t t_direction = direction[static_cast<std::size_t>(&t - soup.data())];
+  const auto t_index = static_cast<std::size_t>(&t - soup.data());
+  const std::uint32_t t_direction = direction[t_index];
   const bool t_solid = ctx.solid[t.operand] != 0;
   const PlaneApprox t_approx(t.poly->support);
   sc.related.clear();
@@ -229,18 +235,21 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
     }
   };
   const SoupPolygon* const polys = soup.data();  // not reloaded after each push_back
-  for (std::size_t i = 0, n = soup.size(); i < n; ++i) {
+  const auto consider = [&](std::size_t i) {
     const SoupPolygon& o = polys[i];
     // Two polygons of one solid operand never cross or overlap (NSI), and the
     // solid operand's own winding numbers at t are known (0 / 1). (Checked
     // before the boxes: it is cheaper and skips half of a two-solid leaf.)
-    if ((o.operand == t.operand && t_solid) || o.id == t.id || !boxes_overlap(t, o)) continue;
+    if ((o.operand == t.operand && t_solid) || o.id == t.id || !boxes_overlap(t, o)) return;
+    // A polygon that cannot touch t changes nothing just beside t and cuts
+    // nothing: leaving it out only narrows the free operands to the exact ones.
+    if (!sc.frame.empty() && sc.frame.apart(t_index, i)) return;
     bool front = false, back = false;
     // Coplanar first: one plane comparison instead of exact zero tests of
     // every vertex (stacks are full of them).
     if (direction[i] != t_direction || !coplanar(t.poly->support, o.poly->support)) {
-      if (!sc.approx.verts.empty() && clearly_one_side(sc.approx.of(i), t_approx)) continue;
-      if (!touches_plane(*o.poly, t.poly->support, t_approx, sc.other_signs)) continue;
+      if (!sc.approx.verts.empty() && clearly_one_side(sc.approx.of(i), t_approx)) return;
+      if (!touches_plane(*o.poly, t.poly->support, t_approx, sc.other_signs)) return;
       for (const std::int8_t v : sc.other_signs) {
         front |= v > 0;
         back |= v < 0;
@@ -252,7 +261,14 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
     if (!front && !back && !ctx.closed[o.operand]) front = back = true;  // coplanar, open operand
     if (front) mark(sc.free_front, sc.n_front, o.operand);
     if (back) mark(sc.free_back, sc.n_back, o.operand);
+  };
+  // In a pile leaf the frame grid names the few polygons that can touch t
+  // (in ascending order, as the full scan would visit them).
+  if (!sc.frame.empty() && sc.frame.overlapping(t_index, sc.candidates)) {
+    for (const std::uint32_t i : sc.candidates) consider(i);
+    return;
   }
+  for (std::size_t i = 0, n = soup.size(); i < n; ++i) consider(i);
 }
 
 /// Starts t's pieces: t minus every coplanar polygon with a lower id, which
@@ -589,7 +605,10 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
   // polygons) keeps its polygons in cache, and the copy would cost more than
   // it saves.
   constexpr std::size_t kFlatLeaf = 256;
-  if (pb.soup.size() > kFlatLeaf) approximate(pb.soup, scratch.approx);
+  if (pb.soup.size() > kFlatLeaf) {
+    approximate(pb.soup, scratch.approx);
+    scratch.frame = FrameBoxes(scratch.approx);
+  }
   std::vector<Piece> pieces;
   const auto classify_or_throw = [&](const SoupPolygon& t, const Polygon& f, std::uint64_t seed) {
     if (!classify_piece(pb, t, f, ctx.solid[t.operand] != 0, seed, w_front, w_back, scratch))

@@ -1,0 +1,155 @@
+// Boxes in a leaf's principal frame (see the header for why they are sound).
+#include "core/frame_boxes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ember::core {
+
+namespace {
+
+using V3 = std::array<double, 3>;
+
+V3 cross(const V3& a, const V3& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+
+bool normalize(V3& v) {
+  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(n > 0) || !std::isfinite(n)) return false;
+  for (double& x : v) x /= n;
+  return true;
+}
+
+}  // namespace
+
+std::array<double, 3> principal_direction(const std::vector<std::array<double, 3>>& points) {
+  V3 mean{};
+  for (const V3& p : points)
+    for (int a = 0; a < 3; ++a) mean[a] += p[a];
+  for (double& m : mean) m /= static_cast<double>(std::max<std::size_t>(1, points.size()));
+  std::array<V3, 3> cov{};
+  for (const V3& p : points) {
+    const V3 d{p[0] - mean[0], p[1] - mean[1], p[2] - mean[2]};
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) cov[r][c] += d[r] * d[c];
+  }
+  V3 v{1, 0.7548776662, 0.5698402910};  // not orthogonal to any axis-aligned eigenvector
+  for (int it = 0; it < 64; ++it) {
+    V3 next{};
+    for (int r = 0; r < 3; ++r) next[r] = cov[r][0] * v[0] + cov[r][1] * v[1] + cov[r][2] * v[2];
+    if (!normalize(next)) return {1, 0, 0};
+    v = next;
+  }
+  return v;
+}
+
+FrameBoxes::FrameBoxes(const SoupApprox& a) {
+  const std::size_t n = a.begin.empty() ? 0 : a.begin.size() - 1;
+  if (n == 0) return;
+  // Any frame is sound; the principal one makes the boxes of a pile's
+  // slivers thin across it.
+  V3 e0 = principal_direction(a.verts);
+  int least = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::fabs(e0[k]) < std::fabs(e0[least])) least = k;
+  V3 axis{};
+  axis[least] = 1;
+  V3 e1 = cross(e0, axis);
+  if (!normalize(e1)) return;
+  const V3 e2 = cross(e0, e1);
+  const std::array<V3, 3> frame{e0, e1, e2};
+  V3 c{};
+  double m = 0;
+  for (const V3& p : a.verts)
+    for (int k = 0; k < 3; ++k) m = std::max(m, std::fabs(p[k]));
+  if (!a.verts.empty()) c = a.verts.front();
+  for (double x : c) m = std::max(m, std::fabs(x));
+  if (!std::isfinite(m)) return;
+  const double pad = 0x1p-40 * m;
+  lo_.assign(n, {HUGE_VAL, HUGE_VAL, HUGE_VAL});
+  hi_.assign(n, {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
+  for (std::size_t i = 0; i < n; ++i) {
+    for (const V3& p : a.of(i)) {
+      const V3 d{p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+      for (int k = 0; k < 3; ++k) {
+        const double r = frame[k][0] * d[0] + frame[k][1] * d[1] + frame[k][2] * d[2];
+        lo_[i][k] = std::min(lo_[i][k], r - pad);
+        hi_[i][k] = std::max(hi_[i][k], r + pad);
+      }
+    }
+  }
+  build_grid();
+}
+
+namespace {
+constexpr int kCells = 32;      // per axis: ~5,000-polygon piles get ~5 per cell
+constexpr int kMaxSpan = 64;    // cells a polygon may cover before it counts as wide
+}  // namespace
+
+std::array<int, 2> FrameBoxes::cell_range(std::size_t i, int axis) const {
+  const std::vector<double>& cuts = cuts_[axis];
+  // Cell c covers [cuts[c-1], cuts[c]] (closed: a box touching a cut is in both).
+  const auto first = std::lower_bound(cuts.begin(), cuts.end(), lo_[i][axis + 1]) - cuts.begin();
+  const auto last = std::upper_bound(cuts.begin(), cuts.end(), hi_[i][axis + 1]) - cuts.begin();
+  return {static_cast<int>(first), static_cast<int>(last)};
+}
+
+void FrameBoxes::build_grid() {
+  const std::size_t n = lo_.size();
+  for (int axis = 0; axis < 2; ++axis) {
+    std::vector<double> centre(n);
+    for (std::size_t i = 0; i < n; ++i) centre[i] = 0.5 * (lo_[i][axis + 1] + hi_[i][axis + 1]);
+    std::sort(centre.begin(), centre.end());
+    std::vector<double>& cuts = cuts_[axis];
+    for (int c = 1; c < kCells; ++c) cuts.push_back(centre[n * static_cast<std::size_t>(c) / kCells]);
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  }
+  const auto columns = static_cast<std::size_t>(cuts_[1].size() + 1);
+  const std::size_t cells = (cuts_[0].size() + 1) * columns;
+  cell_begin_.assign(cells + 1, 0);
+  std::vector<std::array<int, 4>> range(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto r0 = cell_range(i, 0), r1 = cell_range(i, 1);
+    range[i] = {r0[0], r0[1], r1[0], r1[1]};
+    if ((r0[1] - r0[0] + 1) * (r1[1] - r1[0] + 1) > kMaxSpan) {
+      wide_.push_back(static_cast<std::uint32_t>(i));
+      range[i] = {1, 0, 1, 0};  // empty
+      continue;
+    }
+    for (int a = r0[0]; a <= r0[1]; ++a)
+      for (int b = r1[0]; b <= r1[1]; ++b) ++cell_begin_[static_cast<std::size_t>(a) * columns + b + 1];
+  }
+  for (std::size_t c = 0; c < cells; ++c) cell_begin_[c + 1] += cell_begin_[c];
+  members_.resize(cell_begin_.back());
+  std::vector<std::uint32_t> fill(cell_begin_.begin(), cell_begin_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = range[i][0]; a <= range[i][1]; ++a)
+      for (int b = range[i][2]; b <= range[i][3]; ++b)
+        members_[fill[static_cast<std::size_t>(a) * columns + b]++] = static_cast<std::uint32_t>(i);
+  seen_.assign(n, 0);
+}
+
+bool FrameBoxes::overlapping(std::size_t i, std::vector<std::uint32_t>& out) {
+  const auto r0 = cell_range(i, 0), r1 = cell_range(i, 1);
+  if ((r0[1] - r0[0] + 1) * (r1[1] - r1[0] + 1) > kMaxSpan) return false;
+  if (++stamp_ == 0) {  // wrapped: forget every old stamp
+    std::fill(seen_.begin(), seen_.end(), 0);
+    stamp_ = 1;
+  }
+  out.clear();
+  const auto consider = [&](std::uint32_t j) {
+    if (seen_[j] == stamp_ || j == i) return;
+    seen_[j] = stamp_;
+    if (!apart(i, j)) out.push_back(j);
+  };
+  const auto columns = static_cast<std::size_t>(cuts_[1].size() + 1);
+  for (int a = r0[0]; a <= r0[1]; ++a)
+    for (int b = r1[0]; b <= r1[1]; ++b) {
+      const std::size_t c = static_cast<std::size_t>(a) * columns + b;
+      for (std::uint32_t k = cell_begin_[c]; k < cell_begin_[c + 1]; ++k) consider(members_[k]);
+    }
+  for (const std::uint32_t j : wide_) consider(j);
+  std::sort(out.begin(), out.end());
+  return true;
+}
+
+}  // namespace ember::core
