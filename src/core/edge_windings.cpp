@@ -22,7 +22,11 @@ void EdgeWindings::begin_polygon(const Soup& soup, const SoupPolygon& t, std::sp
   t_index_ = static_cast<std::uint32_t>(&t - soup.data());
   related_ = related;
   const std::array<IntPoint, 3>& c = *t.corners;
-  for (int k = 0; k < 3; ++k) edges_[k] = {edge_plane(c[k], c[(k + 1) % 3], t.poly->support), kUnknown, 0};
+  for (int k = 0; k < 3; ++k) {
+    edges_[k].plane = edge_plane(c[k], c[(k + 1) % 3], t.poly->support);
+    edges_[k].state = kUnknown;
+    edges_[k].blockers.clear();
+  }
 }
 
 int EdgeWindings::input_edge_of(const Plane& edge) const {
@@ -47,7 +51,8 @@ void EdgeWindings::classify_edge(int k) {
       return;
     }
   }
-  std::size_t count = 0;
+  constexpr std::size_t kMaxBlockers = 8;  // more sheets on one line: not worth sorting out
+  e.state = kOpen;
   for (const std::uint32_t i : related_) {
     const SoupPolygon& o = (*soup_)[i];
     bool apart = false;
@@ -57,9 +62,20 @@ void EdgeWindings::classify_edge(int k) {
       apart = o.hi[axis] < lo || o.lo[axis] > hi;  // o's box is conservative
     }
     if (apart || classify(a, o.poly->support) != 0 || classify(b, o.poly->support) != 0) continue;
-    if (count++ == 0) e.blocker = i;
+    if (on_inner_side(o, t_->poly->support, e.plane)) continue;  // t's twin near the edge
+    if (e.blockers.size() == kMaxBlockers) {
+      e.state = kBlocked;
+      return;
+    }
+    e.blockers.push_back(i);
   }
-  e.state = count == 0 ? kOpen : (count == 1 ? kBlockedByOne : kBlocked);
+}
+
+bool EdgeWindings::on_inner_side(const SoupPolygon& o, const Plane& support, const Plane& edge) const {
+  if (!coplanar(o.poly->support, support)) return false;
+  for (const Point& v : o.poly->vertices)
+    if (classify(v, edge) > 0) return false;
+  return true;
 }
 
 /// Whether entry e (a piece edge on input edge k's line, recorded from the
@@ -69,16 +85,22 @@ bool EdgeWindings::usable(const Entry& e, int k, const Point& from, const Point&
   const SoupPolygon& s = (*soup_)[e.source];
   if (s.operand != t_->operand) return false;
   const InputEdge& edge = edges_[k];
-  if (edge.state == kBlocked || (edge.state == kBlockedByOne && edge.blocker != e.source)) return false;
+  if (edge.state == kBlocked) return false;
   // A coplanar neighbour must face the same way (it then lies across the
   // edge; facing the other way it would fold back over t).
   const Plane& S = t_->poly->support;
   if (coplanar(S, s.poly->support) && !same_orientation(S, s.poly->support)) return false;
-  // Positive overlap along the line: [e.to, e.from] against [from, to] in the
-  // direction from -> to, along an axis in which the line's end points differ.
   const std::array<IntPoint, 3>& c = *t_->corners;
   const IntPoint& a = c[k];
   const IntPoint& b = c[(k + 1) % 3];
+  // Every other polygon on the line must be a twin of t' on its side.
+  if (!edge.blockers.empty()) {
+    const Plane source_edge = edge_plane(b, a, s.poly->support);
+    for (const std::uint32_t x : edge.blockers)
+      if (x != e.source && !on_inner_side((*soup_)[x], s.poly->support, source_edge)) return false;
+  }
+  // Positive overlap along the line: [e.to, e.from] against [from, to] in the
+  // direction from -> to, along an axis in which the line's end points differ.
   const std::array<std::int64_t, 3> d{b.x - a.x, b.y - a.y, b.z - a.z};
   int axis = 0;
   while (d[axis] == 0) ++axis;  // a != b

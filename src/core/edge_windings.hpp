@@ -17,7 +17,10 @@
 //  * one containing a stretch of the line (a third sheet through the edge, a
 //    coplanar polygon reaching the edge) can: the receiver's `related` list
 //    (gather: every polygon that touches t's plane near t) holds every such
-//    polygon, and any of them but t' blocks the edge.
+//    polygon, and any of them but t' blocks the edge, unless it lies in t's
+//    plane on t's side of the line or in t''s plane on t''s side (a twin of t
+//    or t', as where two operands share a surface): near s such a polygon
+//    covers part of t or t' itself and bounds the same two regions.
 // So the region just in front of f and the one just in front of f' are one
 // region near s, and so are the regions behind: every winding number that is
 // constant along f' is the same along f. A solid operand's own polygons are
@@ -76,17 +79,21 @@ class EdgeWindings {
     std::uint32_t next = UINT32_MAX;  ///< next entry under the same key
   };
   /// Per input edge k of the current polygon.
-  enum : std::uint8_t { kUnknown, kOpen, kBlockedByOne, kBlocked };
+  enum : std::uint8_t { kUnknown, kOpen, kBlocked };
   struct InputEdge {
     Plane plane;                 ///< the triangle's edge plane (clip keeps it)
     std::uint8_t state = kUnknown;
-    std::uint32_t blocker = 0;   ///< with kBlockedByOne: the one polygon containing the line
+    /// With kOpen: the related polygons containing a stretch of the line,
+    /// except those lying on t's side in t's plane.
+    std::vector<std::uint32_t> blockers;
   };
 
   /// Which of f's edges lie on input edge k of the current polygon.
   int input_edge_of(const Plane& edge) const;
   void classify_edge(int k);
   bool usable(const Entry& e, int k, const Point& from, const Point& to) const;
+  /// Polygon o lies in `support` on the inner (negative) side of `edge`.
+  bool on_inner_side(const SoupPolygon& o, const Plane& support, const Plane& edge) const;
 
   std::size_t operands_;
   std::vector<char> closed_;
