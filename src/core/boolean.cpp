@@ -99,12 +99,10 @@ void report(const BooleanOptions& options, std::string_view phase, double fracti
   if (options.progress) options.progress(phase, fraction);
 }
 
-/// Runs the solid proof for closed operand o, records the finding in the
-/// result's report and, when it fails, warns why (it changes path and time).
-bool prove_solid(const core::Subproblem& root, const core::GridTriangles& grid, std::size_t o, BooleanResult& result) {
+/// Records the solid proof's finding for operand o in the result's report
+/// and, when it failed, warns why (it changes path and time).
+bool record_proof(const core::SolidFinding& f, std::size_t o, BooleanResult& result) {
   OperandReport& report = result.stats.operands[o];
-  if (report.open_edges > 0) return false;  // SolidStatus::Open, already warned about (allow_open)
-  const core::SolidFinding f = core::check_solid(root, grid, static_cast<std::uint32_t>(o));
   report.self_intersecting_pairs = f.self_intersecting_pairs;
   report.misoriented_components = f.misoriented_components;
   switch (f.verdict) {
@@ -217,12 +215,23 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     ctx.closed.resize(operands.size());
     for (std::size_t o = 0; o < operands.size(); ++o) ctx.closed[o] = open[o] == 0 || ctx.solid[o];
     if (options.detect_solid) {
-      // Operands not promised solid are proven solid (or not) exactly.
+      // Closed operands not promised solid are proven solid (or not) exactly,
+      // all at once: a small operand's proof alone cannot keep the threads
+      // busy. Open ones were reported above. Findings are recorded in
+      // operand order, so warnings do not depend on the schedule.
+      std::vector<std::uint32_t> unproven;
       for (std::size_t o = 0; o < operands.size(); ++o)
-        if (!ctx.solid[o]) {
-          report(options, "solid check", 0.1 + 0.1 * static_cast<double>(o) / static_cast<double>(operands.size()));
-          arena.execute([&] { ctx.solid[o] = prove_solid(root, grid, o, result); });
-        }
+        if (!ctx.solid[o] && open[o] == 0) unproven.push_back(static_cast<std::uint32_t>(o));
+      if (!unproven.empty()) {
+        report(options, "solid check", 0.1);
+        std::vector<core::SolidFinding> findings(unproven.size());
+        arena.execute([&] {
+          tbb::parallel_for(std::size_t{0}, unproven.size(),
+                            [&](std::size_t k) { findings[k] = core::check_solid(root, grid, unproven[k]); });
+        });
+        for (std::size_t k = 0; k < unproven.size(); ++k)
+          ctx.solid[unproven[k]] = record_proof(findings[k], unproven[k], result);
+      }
     }
     for (const char s : ctx.solid) result.stats.solid_operands += s != 0;
     proved = std::chrono::steady_clock::now();

@@ -1,0 +1,139 @@
+// The solid proof's broad phase (src/core/contact_search.hpp): the count of
+// improper pairs it finds must equal an all-pairs count with the same exact
+// predicate, whatever the sizes, positions and thread count; it stops at
+// max_pairs and gives up on piles past its budget.
+#include <gtest/gtest.h>
+
+#include <tbb/task_arena.h>
+
+#include <map>
+#include <random>
+#include <tuple>
+
+#include "core/contact_search.hpp"
+#include "core/solid_check.hpp"
+#include "core_test_util.hpp"
+
+namespace ember::test {
+namespace {
+
+using Tri = std::array<IntPoint, 3>;
+using core::ContactTriangle;
+
+/// Contact triangles with ids equal iff positions equal (as the set-up's weld gives).
+std::vector<ContactTriangle> with_ids(const std::vector<Tri>& tris) {
+  std::map<std::tuple<std::int64_t, std::int64_t, std::int64_t>, std::uint32_t> ids;
+  std::vector<ContactTriangle> out;
+  for (const Tri& t : tris) {
+    std::array<std::uint32_t, 3> id{};
+    for (int k = 0; k < 3; ++k)
+      id[k] = ids.try_emplace({t[k].x, t[k].y, t[k].z}, static_cast<std::uint32_t>(ids.size())).first->second;
+    out.push_back(core::contact_triangle(t, id));
+  }
+  return out;
+}
+
+std::size_t all_pairs_count(const std::vector<ContactTriangle>& tris) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < tris.size(); ++i)
+    for (std::size_t j = i + 1; j < tris.size(); ++j) n += core::triangles_meet_improperly(tris[i], tris[j]);
+  return n;
+}
+
+bool degenerate(const Tri& t) {
+  const std::array<std::int64_t, 3> n = grid_normal(t[0], t[1], t[2]);
+  return n[0] == 0 && n[1] == 0 && n[2] == 0;
+}
+
+/// Small triangles scattered over a cube of side `extent` (many touch and
+/// cross), with a few long ones across the whole cube, which inflate the
+/// boxes of their leaves and of every node above them.
+std::vector<Tri> scattered(std::size_t count, std::int64_t extent, std::int64_t size, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<std::int64_t> at(-extent, extent), d(-size, size);
+  std::vector<Tri> tris;
+  while (tris.size() < count) {
+    const IntPoint c{at(rng), at(rng), at(rng)};
+    Tri t{c, {c.x + d(rng), c.y + d(rng), c.z + d(rng)}, {c.x + d(rng), c.y + d(rng), c.z + d(rng)}};
+    if (tris.size() % 97 == 5) t[1] = {-c.x, -c.y, c.z};  // a long one
+    if (tris.size() % 5 == 1 && !tris.empty()) t[0] = tris[tris.size() - 1][1];  // a shared vertex
+    if (!degenerate(t)) tris.push_back(t);
+  }
+  return tris;
+}
+
+TEST(ContactSearch, CountEqualsAllPairsOnRandomSoups) {
+  // Sizes around multiples of the leaf size and of powers of two, so that
+  // leaves are partly filled and the tree has empty slots.
+  for (const std::size_t n : {1u, 2u, 7u, 8u, 9u, 63u, 300u, 1500u}) {
+    const std::vector<ContactTriangle> tris = with_ids(scattered(n, 1000, 60, static_cast<unsigned>(n)));
+    const std::size_t expected = all_pairs_count(tris);
+    for (const int threads : {1, 2, 4}) {
+      tbb::task_arena arena(threads);
+      core::ContactSearchResult r;
+      arena.execute([&] { r = core::find_contacts(tris, 1u << 30); });
+      EXPECT_EQ(r.pairs, expected) << n << " triangles, " << threads << " threads";
+      EXPECT_FALSE(r.gave_up);
+    }
+    if (n >= 300) {
+      EXPECT_GT(expected, 10u) << "the soup should cross itself";
+    }
+  }
+}
+
+TEST(ContactSearch, ExtremeCoordinatesAreNotMissed) {
+  // Boxes at the grid's limits (|x| <= 2^25): the Morton key and the int32
+  // boxes must hold them.
+  const std::int64_t m = kCoordLimit;
+  const std::vector<Tri> tris{
+      {{{-m, -m, -m}, {m, -m, -m}, {-m, m, m}}},
+      {{{m, m, -m}, {-m, -m, m}, {m, -m, m}}},  // crosses the first
+      {{{m, m, m}, {m - 1, m, m}, {m, m - 1, m}}},
+      {{{m, m, m - 1}, {m - 1, m, m}, {m, m - 1, m}}},
+  };
+  const std::vector<ContactTriangle> ct = with_ids(tris);
+  EXPECT_EQ(core::find_contacts(ct, 100).pairs, all_pairs_count(ct));
+  EXPECT_GE(all_pairs_count(ct), 1u);
+}
+
+TEST(ContactSearch, ClosedSurfaceHasNoContacts) {
+  const Mesh sphere = icosphere({0, 0, 0}, 1.0, 4);
+  std::vector<Tri> tris;
+  for (std::size_t f = 0; f < sphere.face_count(); ++f) {
+    Tri t;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3d& v = sphere.vertices[sphere.face(f)[k]];
+      t[k] = {static_cast<std::int64_t>(v.x * 4096), static_cast<std::int64_t>(v.y * 4096),
+              static_cast<std::int64_t>(v.z * 4096)};
+    }
+    if (!degenerate(t)) tris.push_back(t);
+  }
+  const core::ContactSearchResult r = core::find_contacts(with_ids(tris), 1000);
+  EXPECT_EQ(r.pairs, 0u);
+  EXPECT_FALSE(r.gave_up);
+}
+
+TEST(ContactSearch, StopsAtMaxPairs) {
+  const std::vector<ContactTriangle> tris = with_ids(scattered(1500, 1000, 60, 1500));
+  ASSERT_GT(all_pairs_count(tris), 20u);
+  EXPECT_EQ(core::find_contacts(tris, 20).pairs, 20u);
+}
+
+TEST(ContactSearch, GivesUpOnAPileOfParallelSlivers) {
+  // 3000 parallel, pairwise disjoint triangles whose boxes all overlap: 4.5 M
+  // box pairs, past the budget of ~3.1 M. No pair meets, so no verdict.
+  std::vector<Tri> tris;
+  const std::int64_t w = 1 << 20;
+  for (std::int64_t k = 0; k < 3000; ++k) tris.push_back({{{0, 0, k}, {w, 0, k + w}, {0, w, k}}});
+  const core::ContactSearchResult r = core::find_contacts(with_ids(tris), 1000);
+  EXPECT_EQ(r.pairs, 0u);
+  EXPECT_TRUE(r.gave_up);
+  // The same pile, small enough for the budget, is searched to the end.
+  tris.resize(600);
+  const core::ContactSearchResult small = core::find_contacts(with_ids(tris), 1000);
+  EXPECT_EQ(small.pairs, 0u);
+  EXPECT_FALSE(small.gave_up);
+}
+
+}  // namespace
+}  // namespace ember::test
