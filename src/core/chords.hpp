@@ -1,0 +1,29 @@
+#pragma once
+// The chords of a leaf's C3 test (leaf.cpp, cut_by_transverse): where two
+// polygons on crossing planes meet the other's plane. A piece is cut when
+// the two chords overlap with positive length; the exact answer
+// (line_region_has_length over chord_constraints) costs thousands of
+// instructions, and most pairs that reach it do not overlap at all.
+#include <cstdint>
+#include <vector>
+
+#include "ember/geometry.hpp"
+
+namespace ember::core {
+
+/// Appends the edges of a convex polygon that can bound the chord where a
+/// line in the plane `cut` crosses it: edges whose end points lie on opposite
+/// sides of `cut` or touch it (`signs`: the vertices' exact sides of `cut`).
+/// The other edges contain the whole chord.
+void chord_constraints(const Polygon& poly, const std::vector<std::int8_t>& signs, std::vector<Plane>& out);
+
+/// True only if the chord of polygon `a` (on plane `sa`) along plane `sb` and
+/// the chord of polygon `b` (on `sb`) along `sa` are certainly disjoint: then
+/// they cannot overlap with positive length and no cut is needed. `signs_a`
+/// are a's vertices' exact sides of `sb`, `signs_b` b's of `sa`. A
+/// floating-point filter with rigorous bounds (chords.cpp): false whenever it
+/// cannot be sure, never true when the chords meet.
+bool chords_surely_disjoint(const Polygon& a, const Plane& sa, const std::vector<std::int8_t>& signs_a,
+                            const Polygon& b, const Plane& sb, const std::vector<std::int8_t>& signs_b);
+
+}  // namespace ember::core
