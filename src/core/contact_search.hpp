@@ -33,7 +33,10 @@ ContactSearchResult find_contacts(std::span<const ContactTriangle> tris, std::si
 
 /// The work budget: box pairs examined per triangle (plus a fixed allowance
 /// for small inputs) before the search gives up. Ordinary meshes examine
-/// 30-150 per triangle (docs/core.md, "Solid proof").
-inline constexpr std::size_t kBudgetPerTriangle = 1024;
+/// 25-320 per triangle; EMBER case 582's first operand, solid, 1,126; the
+/// sliver pile's twin rods, which self-intersect, ~2,900 (docs/core.md,
+/// "Solid proof"). A proof that gives up sends the operand down the general
+/// path, which costs case 582 four times the Boolean's time.
+inline constexpr std::size_t kBudgetPerTriangle = 2048;
 
 }  // namespace ember::core

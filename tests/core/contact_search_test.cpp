@@ -120,16 +120,18 @@ TEST(ContactSearch, StopsAtMaxPairs) {
 }
 
 TEST(ContactSearch, GivesUpOnAPileOfParallelSlivers) {
-  // 3000 parallel, pairwise disjoint triangles whose boxes all overlap: 4.5 M
-  // box pairs, past the budget of ~3.1 M. No pair meets, so no verdict.
+  // Parallel, pairwise disjoint triangles whose boxes all overlap: n^2 / 2
+  // box pairs, past the budget of about kBudgetPerTriangle * n. No pair
+  // meets, so no verdict.
+  const std::int64_t n = 2 * static_cast<std::int64_t>(core::kBudgetPerTriangle) + 1000;
   std::vector<Tri> tris;
   const std::int64_t w = 1 << 20;
-  for (std::int64_t k = 0; k < 3000; ++k) tris.push_back({{{0, 0, k}, {w, 0, k + w}, {0, w, k}}});
+  for (std::int64_t k = 0; k < n; ++k) tris.push_back({{{0, 0, k}, {w, 0, k + w}, {0, w, k}}});
   const core::ContactSearchResult r = core::find_contacts(with_ids(tris), 1000);
   EXPECT_EQ(r.pairs, 0u);
   EXPECT_TRUE(r.gave_up);
   // The same pile, small enough for the budget, is searched to the end.
-  tris.resize(600);
+  tris.resize(core::kBudgetPerTriangle / 2);
   const core::ContactSearchResult small = core::find_contacts(with_ids(tris), 1000);
   EXPECT_EQ(small.pairs, 0u);
   EXPECT_FALSE(small.gave_up);
