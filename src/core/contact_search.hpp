@@ -27,8 +27,11 @@ struct ContactSearchResult {
 /// Counts the pairs of `tris` that meet improperly (triangles_meet_improperly),
 /// stopping once max_pairs are found or once about kBudgetPerTriangle box
 /// pairs per triangle were examined. Each unordered pair is tested at most
-/// once, so below max_pairs the count is exact whatever the thread count.
-/// Parallel (oneTBB) in the caller's task arena.
+/// once, so when the search ends below max_pairs within its budget the count
+/// is exact whatever the thread count. Past the budget, whether a pair was
+/// found before the search stopped depends on the schedule; both answers
+/// mean "not solid", so only the report (count, reason) can differ, never
+/// the Boolean's path or output. Parallel (oneTBB) in the caller's arena.
 ContactSearchResult find_contacts(std::span<const ContactTriangle> tris, std::size_t max_pairs);
 
 /// The work budget: box pairs examined per triangle (plus a fixed allowance
