@@ -17,6 +17,19 @@ namespace ember::core {
 /// The other edges contain the whole chord.
 void chord_constraints(const Polygon& poly, const std::vector<std::int8_t>& signs, std::vector<Plane>& out);
 
+enum class ChordOverlap { kYes, kNo, kUnsure };
+
+/// The cheap answers to "do the chord of `a` along `sb` and the chord of `b`
+/// along `sa` overlap with positive length?", before the exact test:
+///  * kYes when double estimates of both chords overlap by clearly more than
+///    their rounding error (2^-10 grid units against errors near 2^-26 for
+///    well-shaped input). It may err: a superfluous cut refines the piece's
+///    partition without changing any classification;
+///  * kNo when chords_surely_disjoint says so (never wrong);
+///  * kUnsure otherwise: the caller decides exactly.
+ChordOverlap filter_chords(const Polygon& a, const Plane& sa, const std::vector<std::int8_t>& signs_a,
+                           const Polygon& b, const Plane& sb, const std::vector<std::int8_t>& signs_b);
+
 /// True only if the chord of polygon `a` (on plane `sa`) along plane `sb` and
 /// the chord of polygon `b` (on `sb`) along `sa` are certainly disjoint: then
 /// they cannot overlap with positive length and no cut is needed. `signs_a`

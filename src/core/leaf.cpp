@@ -54,56 +54,6 @@ void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& o
   }
 }
 
-/// Double approximation of the interval that a convex polygon's chord along
-/// `plane` covers on the direction `dir`, from the cached vertex
-/// approximations and the vertices' exact signs against the plane.
-std::array<double, 2> approx_chord(const Polygon& poly, const std::vector<std::int8_t>& signs, const Plane& plane,
-                                   const std::array<double, 3>& dir) {
-  const double na = static_cast<double>(plane.a.raw()), nb = static_cast<double>(plane.b.raw()),
-               nc = static_cast<double>(plane.c.raw()), nd = plane.d.to_double();
-  std::array<double, 2> range{HUGE_VAL, -HUGE_VAL};
-  const auto add = [&](const std::array<double, 3>& x) {
-    const double t = dir[0] * x[0] + dir[1] * x[1] + dir[2] * x[2];
-    range[0] = std::min(range[0], t);
-    range[1] = std::max(range[1], t);
-  };
-  const std::size_t n = poly.vertices.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t j = i + 1 == n ? 0 : i + 1;
-    const auto& fi = poly.vertices[i].f;
-    if (signs[i] == 0) add(fi);
-    if (signs[i] * signs[j] >= 0) continue;
-    const auto& fj = poly.vertices[j].f;
-    const double di = na * fi[0] + nb * fi[1] + nc * fi[2] + nd;
-    const double dj = na * fj[0] + nb * fj[1] + nc * fj[2] + nd;
-    const double t = di / (di - dj);
-    add({fi[0] + t * (fj[0] - fi[0]), fi[1] + t * (fj[1] - fi[1]), fi[2] + t * (fj[2] - fi[2])});
-  }
-  return range;
-}
-
-/// A cheap answer to "do the two chords overlap with positive length?" that
-/// may only err towards yes: a superfluous cut refines the piece's partition
-/// without changing any classification, whereas a missed cut would be wrong.
-/// Says yes when the double estimates overlap by clearly more than their
-/// rounding error (2^-10 grid units against errors near 2^-26 for well-shaped
-/// input); every other case goes to the exact test.
-bool chords_clearly_overlap(const Polygon& piece, const std::vector<std::int8_t>& signs, const Plane& support,
-                            const Polygon& other, const std::vector<std::int8_t>& other_signs) {
-  const double a0 = static_cast<double>(support.a.raw()), a1 = static_cast<double>(support.b.raw()),
-               a2 = static_cast<double>(support.c.raw());
-  const double b0 = static_cast<double>(other.support.a.raw()), b1 = static_cast<double>(other.support.b.raw()),
-               b2 = static_cast<double>(other.support.c.raw());
-  std::array<double, 3> dir{a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0};
-  const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-  if (!(len > 0) || !std::isfinite(len)) return false;
-  for (double& d : dir) d /= len;
-  const auto p = approx_chord(piece, signs, other.support, dir);
-  const auto q = approx_chord(other, other_signs, support, dir);
-  const double overlap = std::min(p[1], q[1]) - std::max(p[0], q[0]);
-  return overlap > 0x1p-10;
-}
-
 /// Case C3: split the piece by the other polygon's plane if their
 /// intersection segment crosses the piece's interior with positive length.
 /// `other_signs` are the other polygon's vertices classified against the
@@ -121,11 +71,9 @@ void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& s
     pos |= s > 0;
   }
   if (!(neg && pos)) return;
-  if (!chords_clearly_overlap(poly, signs, support, other, other_signs)) {
-    // Most pairs that get here do not meet at all, which a filter with
-    // rigorous bounds can tell (7x cheaper than the exact test); the rest,
-    // chords that touch or nearly do, need the exact test.
-    if (chords_surely_disjoint(poly, support, signs, other, other.support, other_signs)) return;
+  const ChordOverlap filtered = filter_chords(poly, support, signs, other, other.support, other_signs);
+  if (filtered == ChordOverlap::kNo) return;
+  if (filtered == ChordOverlap::kUnsure) {
     cons.clear();
     chord_constraints(poly, signs, cons);
     chord_constraints(other, other_signs, cons);
