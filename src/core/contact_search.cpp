@@ -5,7 +5,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 #include <tbb/task_group.h>
 
 #include <algorithm>
@@ -14,6 +13,8 @@
 #include <cstdint>
 #include <limits>
 #include <vector>
+
+#include "core/sort_pairs.hpp"
 
 namespace ember::core {
 
@@ -89,7 +90,7 @@ class Search {
         order[i] = {morton_key(boxes[i]), static_cast<std::uint32_t>(i)};
       }
     });
-    tbb::parallel_sort(order.begin(), order.end());  // keys tie-broken by index: one order for any thread count
+    sort_pairs(order);  // keys tie-broken by index: one order for any thread count
     order_.resize(n);
     boxes_.resize(n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {

@@ -3,13 +3,13 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 
+#include "core/sort_pairs.hpp"
 #include "ember/geometry/clip.hpp"
 
 namespace ember::core {
@@ -87,7 +87,7 @@ void expand_path_pieces(std::vector<OutputPolygon>& polys, std::span<const Split
   for (std::size_t i = 0; i < polys.size(); ++i)
     if (polys[i].path != OutputPolygon::kNoPath) order.emplace_back(polys[i].id, static_cast<std::uint32_t>(i));
   if (order.empty()) return;
-  tbb::parallel_sort(order.begin(), order.end());
+  sort_pairs(order);
   std::vector<std::size_t> group_begin;
   for (std::size_t k = 0; k < order.size(); ++k)
     if (k == 0 || order[k].first != order[k - 1].first) group_begin.push_back(k);

@@ -4,13 +4,13 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 
 #include "core/mesh/vertex_index.hpp"
+#include "core/sort_pairs.hpp"
 
 namespace ember::core {
 
@@ -98,7 +98,7 @@ void assemble(const RegionTriangles& direct, const Regions& regions,
   std::vector<std::pair<std::uint64_t, std::uint32_t>> used;
   for (std::uint32_t v = 0; v < first_use.size(); ++v)
     if (first_use[v] != UINT64_MAX) used.emplace_back(first_use[v], v);
-  tbb::parallel_sort(used.begin(), used.end());
+  sort_pairs(used);
   std::vector<std::uint32_t> remap(verts.exact.size(), UINT32_MAX);
   Mesh& mesh = out.mesh;
   mesh.vertices.resize(used.size());

@@ -13,11 +13,11 @@
 // are parallel, and equally oriented iff the normals point the same way.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 
 #include "core/mesh/mesh_output.hpp"
+#include "core/sort_pairs.hpp"
 
 namespace ember::core {
 
@@ -45,7 +45,7 @@ std::vector<std::pair<std::uint64_t, std::uint32_t>> grown_edges(const OutputVer
     if (c.size() == verts.corners[p].size()) continue;
     for (std::size_t k = 0; k < c.size(); ++k) out.emplace_back(pair_key(c[k], c[(k + 1) % c.size()]), p);
   }
-  tbb::parallel_sort(out.begin(), out.end());
+  sort_pairs(out);
   return out;
 }
 

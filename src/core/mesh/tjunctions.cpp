@@ -19,13 +19,13 @@
 // projection, and strictly between them.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "core/mesh/mesh_output.hpp"
 #include "core/mesh/vertex_index.hpp"
+#include "core/sort_pairs.hpp"
 #include "ember/geometry/exact_order.hpp"
 
 namespace ember::core {
@@ -101,7 +101,7 @@ EdgePairs group_edges_by_pair(const Cycles& corners) {
       }
     }
   });
-  tbb::parallel_sort(keyed.begin(), keyed.end());
+  sort_pairs(keyed);
   g.corner.resize(n);
   g.run_of.resize(n);
   for (std::size_t i = 0; i < n; ++i) {

@@ -1,7 +1,6 @@
 #pragma once
 // A set of output vertices bucketed by rounded position, for the mesh
 // stage's exact searches of vertices on a segment (T-junctions, diagonals).
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
@@ -10,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/sort_pairs.hpp"
 #include "ember/mesh.hpp"
 
 namespace ember::core {
@@ -63,7 +63,7 @@ class VertexIndex {
     const auto n = static_cast<std::uint32_t>(pos_.size());
     cells_.resize(n);
     for (std::uint32_t i = 0; i < n; ++i) cells_[i] = {key(cell_of(pos_[i])), i};
-    tbb::parallel_sort(cells_.begin(), cells_.end());
+    sort_pairs(cells_);
     // Open-addressing table: occupied cell key -> its run in cells_.
     std::size_t runs = 0;
     for (std::size_t i = 0; i < n; ++i) runs += i == 0 || cells_[i].first != cells_[i - 1].first;

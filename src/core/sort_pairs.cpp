@@ -1,0 +1,102 @@
+#include "core/sort_pairs.hpp"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <limits>
+
+namespace ember::core {
+
+namespace {
+
+// 11-bit digits: 2,048 counters of 8 bytes per chunk stay in L1 during the
+// count, and a 34-bit key (an edge of 2^17 vertices) needs 4 passes.
+constexpr int kDigitBits = 11;
+constexpr std::size_t kBuckets = std::size_t{1} << kDigitBits;
+// Fixed chunks (not the scheduler's ranges): the scatter offsets, and hence
+// the result, are the same for any thread count.
+constexpr std::size_t kChunk = std::size_t{1} << 16;
+// Below this a comparison sort is as fast and needs no second buffer.
+constexpr std::size_t kSmall = 2048;
+
+template <typename Key>
+using Pairs = std::vector<std::pair<Key, std::uint32_t>>;
+
+/// The key bits in which some two keys differ; `values_ordered` says
+/// whether the values are non-decreasing (the fast path's condition).
+template <typename Key>
+Key varying_bits(const Pairs<Key>& v, bool& values_ordered) {
+  Key any = 0, all = std::numeric_limits<Key>::max();
+  values_ordered = true;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    any |= v[i].first;
+    all &= v[i].first;
+    values_ordered &= i == 0 || v[i - 1].second <= v[i].second;
+  }
+  return any ^ all;
+}
+
+/// First bit at or above `from` in which keys differ, or the key width.
+template <typename Key>
+int next_varying(Key varying, int from) {
+  constexpr int kBits = std::numeric_limits<Key>::digits;
+  if (from >= kBits) return kBits;
+  const Key rest = varying >> from;
+  return rest == 0 ? kBits : from + std::countr_zero(rest);
+}
+
+/// Stable LSD radix sort by key, over the windows of kDigitBits that start at
+/// a varying bit (bits that no key differs in would only copy).
+template <typename Key>
+void radix_sort_by_key(Pairs<Key>& v, Key varying) {
+  constexpr int kBits = std::numeric_limits<Key>::digits;
+  const std::size_t n = v.size(), chunks = (n + kChunk - 1) / kChunk;
+  Pairs<Key> other(n);
+  std::vector<std::array<std::size_t, kBuckets>> at(chunks);
+  auto* src = &v;
+  auto* dst = &other;
+  for (int shift = next_varying(varying, 0); shift < kBits; shift = next_varying(varying, shift + kDigitBits)) {
+    const auto digit = [shift](Key k) { return static_cast<std::size_t>(k >> shift) & (kBuckets - 1); };
+    tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+      at[c].fill(0);
+      for (std::size_t i = c * kChunk, e = std::min(n, i + kChunk); i < e; ++i) ++at[c][digit((*src)[i].first)];
+    });
+    // Exclusive prefix in (digit, chunk) order: chunk c's items of digit d
+    // follow those of earlier chunks, which keeps the sort stable.
+    std::size_t sum = 0;
+    for (std::size_t d = 0; d < kBuckets; ++d)
+      for (std::size_t c = 0; c < chunks; ++c) sum += std::exchange(at[c][d], sum);
+    tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+      for (std::size_t i = c * kChunk, e = std::min(n, i + kChunk); i < e; ++i)
+        (*dst)[at[c][digit((*src)[i].first)]++] = (*src)[i];
+    });
+    std::swap(src, dst);
+  }
+  if (src != &v) v.swap(other);
+}
+
+template <typename Key>
+void sort_pairs_impl(Pairs<Key>& v) {
+  if (v.size() < kSmall) {
+    std::sort(v.begin(), v.end());
+    return;
+  }
+  bool values_ordered = false;
+  const Key varying = varying_bits(v, values_ordered);
+  // Stable by key with non-decreasing values is exactly pair order.
+  if (values_ordered) {
+    radix_sort_by_key(v, varying);
+  } else {
+    tbb::parallel_sort(v.begin(), v.end());
+  }
+}
+
+}  // namespace
+
+void sort_pairs(std::vector<std::pair<std::uint64_t, std::uint32_t>>& v) { sort_pairs_impl(v); }
+void sort_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& v) { sort_pairs_impl(v); }
+
+}  // namespace ember::core

@@ -1,0 +1,93 @@
+// sort_pairs (src/core/sort_pairs.hpp) must give std::sort's order for any
+// input: the radix fast path (values non-decreasing) and the fallback alike,
+// at any thread count, across chunk boundaries and for keys whose varying
+// bits are sparse (the radix windows skip the bits no key differs in).
+#include <gtest/gtest.h>
+
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <random>
+
+#include "core/sort_pairs.hpp"
+
+namespace ember::test {
+namespace {
+
+template <typename Key>
+using Pairs = std::vector<std::pair<Key, std::uint32_t>>;
+
+/// n pairs with keys drawn from `key`, values 0, 1, 2, ... (the fast path's
+/// input) or, with `shuffled_values`, a random permutation of them.
+template <typename Key, typename Gen>
+Pairs<Key> make_pairs(std::size_t n, Gen&& key, bool shuffled_values, std::mt19937_64& rng) {
+  Pairs<Key> v(n);
+  for (std::size_t i = 0; i < n; ++i) v[i] = {key(), static_cast<std::uint32_t>(i)};
+  if (shuffled_values) {
+    std::vector<std::uint32_t> vals(n);
+    for (std::size_t i = 0; i < n; ++i) vals[i] = static_cast<std::uint32_t>(i / 3);  // repeats too
+    std::shuffle(vals.begin(), vals.end(), rng);
+    for (std::size_t i = 0; i < n; ++i) v[i].second = vals[i];
+  }
+  return v;
+}
+
+template <typename Key>
+void expect_sorted_like_std(Pairs<Key> v, int threads) {
+  Pairs<Key> expected = v;
+  std::sort(expected.begin(), expected.end());
+  tbb::task_arena(threads).execute([&] { core::sort_pairs(v); });
+  ASSERT_EQ(v.size(), expected.size());
+  EXPECT_TRUE(v == expected) << "n = " << v.size() << ", threads = " << threads;
+}
+
+TEST(SortPairs, MatchesStdSortOn64BitKeys) {
+  std::mt19937_64 rng(7);
+  // Sizes below the comparison-sort threshold, one chunk, several chunks
+  // with a ragged last one.
+  for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{100}, std::size_t{5000},
+                              std::size_t{65536}, std::size_t{3 * 65536 + 17}}) {
+    for (const bool shuffled : {false, true}) {
+      // Full-width keys; edge-like keys (min << 32 | max over 2^17 ids: bits
+      // 17..31 never vary); few distinct keys (many ties broken by value);
+      // keys that differ only in the top bit.
+      std::uniform_int_distribution<std::uint64_t> any;
+      std::uniform_int_distribution<std::uint64_t> id(0, (1u << 17) - 1);
+      std::uniform_int_distribution<std::uint64_t> few(0, 6);
+      const std::vector<Pairs<std::uint64_t>> inputs = {
+          make_pairs<std::uint64_t>(n, [&] { return any(rng); }, shuffled, rng),
+          make_pairs<std::uint64_t>(n, [&] {
+            const std::uint64_t a = id(rng), b = id(rng);
+            return (std::min(a, b) << 32) | std::max(a, b);
+          }, shuffled, rng),
+          make_pairs<std::uint64_t>(n, [&] { return few(rng) * 0x0101010101ull; }, shuffled, rng),
+          make_pairs<std::uint64_t>(n, [&] { return (few(rng) & 1) << 63; }, shuffled, rng),
+      };
+      for (const auto& v : inputs)
+        for (const int threads : {1, 3}) expect_sorted_like_std(v, threads);
+    }
+  }
+}
+
+TEST(SortPairs, MatchesStdSortOn32BitKeys) {
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<std::uint32_t> any;
+  std::uniform_int_distribution<std::uint32_t> small(0, 999);
+  for (const std::size_t n : {std::size_t{3000}, std::size_t{2 * 65536 + 5}}) {
+    for (const bool shuffled : {false, true}) {
+      expect_sorted_like_std(make_pairs<std::uint32_t>(n, [&] { return any(rng); }, shuffled, rng), 2);
+      expect_sorted_like_std(make_pairs<std::uint32_t>(n, [&] { return small(rng); }, shuffled, rng), 2);
+    }
+  }
+}
+
+TEST(SortPairs, AllKeysEqualLeavesValueOrder) {
+  std::mt19937_64 rng(3);
+  const auto v = make_pairs<std::uint64_t>(70000, [] { return std::uint64_t{42}; }, false, rng);
+  auto sorted = v;
+  core::sort_pairs(sorted);
+  EXPECT_TRUE(sorted == v);
+}
+
+}  // namespace
+}  // namespace ember::test
