@@ -48,14 +48,6 @@ struct Projection {
   std::int64_t orient(const IntPoint& p, const IntPoint& q, const IntPoint& r) const {
     return (get(q, u) - get(p, u)) * (get(r, v) - get(p, v)) - (get(q, v) - get(p, v)) * (get(r, u) - get(p, u));
   }
-  /// r is collinear with p, q: does it lie on the closed segment?
-  bool within(const IntPoint& p, const IntPoint& q, const IntPoint& r) const {
-    for (const int a : {u, v}) {
-      const std::int64_t lo = std::min(get(p, a), get(q, a)), hi = std::max(get(p, a), get(q, a));
-      if (get(r, a) < lo || get(r, a) > hi) return false;
-    }
-    return true;
-  }
 };
 
 /// The axis along which a plane with normal n projects without collapsing.
@@ -63,22 +55,6 @@ int dominant_axis(const std::array<std::int64_t, 3>& n) {
   const std::int64_t a[3] = {n[0] < 0 ? -n[0] : n[0], n[1] < 0 ? -n[1] : n[1], n[2] < 0 ? -n[2] : n[2]};
   if (a[0] >= a[1] && a[0] >= a[2]) return 0;
   return a[1] >= a[2] ? 1 : 2;
-}
-
-bool segments_meet(const Projection& pr, const IntPoint& p, const IntPoint& q, const IntPoint& r, const IntPoint& s) {
-  const int o1 = sign(pr.orient(p, q, r)), o2 = sign(pr.orient(p, q, s));
-  const int o3 = sign(pr.orient(r, s, p)), o4 = sign(pr.orient(r, s, q));
-  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  return (o1 == 0 && pr.within(p, q, r)) || (o2 == 0 && pr.within(p, q, s)) || (o3 == 0 && pr.within(r, s, p)) ||
-         (o4 == 0 && pr.within(r, s, q));
-}
-
-/// Closed triangle contains p (all coplanar, seen in projection pr).
-bool contains(const Projection& pr, const std::array<IntPoint, 3>& t, const IntPoint& p) {
-  const int s = sign(pr.orient(t[0], t[1], t[2]));
-  for (int i = 0; i < 3; ++i)
-    if (s * sign(pr.orient(t[i], t[(i + 1) % 3], p)) < 0) return false;
-  return true;
 }
 
 /// Closed coplanar triangles meet unless an edge line of one has the other
@@ -96,23 +72,46 @@ bool coplanar_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 
   return !separated_by_edge_of(a, b) && !separated_by_edge_of(b, a);
 }
 
-/// Closed segment pq meets closed triangle t (t non-degenerate).
-bool segment_meets_triangle(const IntPoint& p, const IntPoint& q, const ContactTriangle& tri) {
-  const std::array<IntPoint, 3>& t = tri.p;
-  const int sp = sign(side(tri, p)), sq = sign(side(tri, q));
-  if (sp * sq > 0) return false;
-  if (sp == 0 && sq == 0) {  // in t's plane
-    const Projection pr(dominant_axis(tri.n));
-    if (contains(pr, t, p) || contains(pr, t, q)) return true;
-    for (int i = 0; i < 3; ++i)
-      if (segments_meet(pr, p, q, t[i], t[(i + 1) % 3])) return true;
-    return false;
+/// The canonical order of a triangle for the straddle test below, from the
+/// signs s of its vertices against the other triangle's plane (not all equal
+/// and non-zero, not all zero): its vertices as (alone, x, y) where `alone`
+/// is on one closed side and x, y on the other, and `flip` set when that
+/// other plane must be turned around so that `alone` is on its positive
+/// closed side and x, y on its negative one. A vertex may sit on the plane
+/// only if it is alone (then x and y are strictly on one side) or if it is
+/// x or y.
+struct Straddle {
+  int alone = 0;
+  bool flip = false;
+};
+Straddle straddle(const int (&s)[3]) {
+  for (int k = 0; k < 3; ++k) {
+    const int t = s[k], u = s[(k + 1) % 3], v = s[(k + 2) % 3];
+    if ((t > 0 && u <= 0 && v <= 0) || (t == 0 && u < 0 && v < 0)) return {k, false};
+    if ((t < 0 && u >= 0 && v >= 0) || (t == 0 && u > 0 && v > 0)) return {k, true};
   }
-  // The line through p, q hits t's plane in the segment; that point is in the
-  // closed triangle iff the three signed volumes agree (zeros allowed).
-  const int u0 = sign(orient3d(p, q, t[0], t[1])), u1 = sign(orient3d(p, q, t[1], t[2])),
-            u2 = sign(orient3d(p, q, t[2], t[0]));
-  return (u0 >= 0 && u1 >= 0 && u2 >= 0) || (u0 <= 0 && u1 <= 0 && u2 <= 0);
+  return {0, false};  // unreachable for the sign patterns the caller passes
+}
+
+/// Closed non-coplanar triangles a and b, each meeting the other's plane
+/// (sa: a's vertices against b's plane, sb: b's against a's), intersect iff
+/// the segments in which they cross the planes' common line overlap
+/// (Guigue and Devillers 2003). With a = (p1, q1, r1) and b = (p2, q2, r2) in
+/// canonical order (p1 alone on the positive side of b's plane, turned if
+/// needed by swapping q2 and r2; p2 likewise for a's plane), the segments
+/// overlap iff neither ends before the other begins, which two orientations
+/// of one vertex of each against an edge of the other decide.
+bool straddling_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b,
+                               const int (&sa)[3], const int (&sb)[3]) {
+  const Straddle ca = straddle(sa), cb = straddle(sb);
+  // ca.flip turns b's plane (swap b's last two), cb.flip turns a's.
+  const IntPoint& p1 = a[ca.alone];
+  const IntPoint& q1 = a[(ca.alone + (cb.flip ? 2 : 1)) % 3];
+  const IntPoint& r1 = a[(ca.alone + (cb.flip ? 1 : 2)) % 3];
+  const IntPoint& p2 = b[cb.alone];
+  const IntPoint& q2 = b[(cb.alone + (ca.flip ? 2 : 1)) % 3];
+  const IntPoint& r2 = b[(cb.alone + (ca.flip ? 1 : 2)) % 3];
+  return orient3d(q1, q2, p2, p1) <= 0 && orient3d(p1, r2, p2, r1) <= 0;
 }
 
 /// Direction of the segment (starting at shared vertex v) in which triangle
@@ -212,11 +211,8 @@ bool triangles_meet_improperly(const ContactTriangle& ta, const ContactTriangle&
   if (sa[0] == 0 && sa[1] == 0 && sa[2] == 0) return coplanar_meet(a, b, Projection(dominant_axis(ta.n)));
   const i128 sb[3] = {side_of_a(b[0]), side_of_a(b[1]), side_of_a(b[2])};
   if (one_side(sb)) return false;
-  // Non-coplanar: an end of the common segment lies on an edge of a or of b.
-  for (int i = 0; i < 3; ++i)
-    if (segment_meets_triangle(a[i], a[(i + 1) % 3], tb) || segment_meets_triangle(b[i], b[(i + 1) % 3], ta))
-      return true;
-  return false;
+  const int signs_a[3] = {sign(sa[0]), sign(sa[1]), sign(sa[2])}, signs_b[3] = {sign(sb[0]), sign(sb[1]), sign(sb[2])};
+  return straddling_triangles_meet(a, b, signs_a, signs_b);
 }
 
 }  // namespace ember::core

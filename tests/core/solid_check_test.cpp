@@ -119,13 +119,16 @@ bool oracle_meet(const Tri& a, const Tri& b) {
   return false;
 }
 
-/// Random triangles on a 4x4x4 lattice whose points are origin + c * step
-/// (c in 0..3 per axis), checked against the rational oracle. On so few
+/// Random triangles on a lattice whose points are origin + c * step (c in
+/// 0 .. points - 1 per axis), checked against the rational oracle. On so few
 /// points degeneracies (shared vertices and edges, coplanarity, touching) are
-/// frequent. meet() also checks argument and vertex symmetries.
-void expect_random_lattice_pairs_match_oracle(std::int64_t origin, std::int64_t step) {
+/// frequent. meet() also checks argument and vertex symmetries. Every third
+/// pair is forced to share a vertex unless `unshared`, which instead skips
+/// pairs with a common vertex (the straddle test's territory).
+void expect_random_lattice_pairs_match_oracle(std::int64_t origin, std::int64_t step, int points = 4,
+                                              int pairs = 20000, bool unshared = false) {
   std::mt19937 rng(42);
-  std::uniform_int_distribution<int> c(0, 3);
+  std::uniform_int_distribution<int> c(0, points - 1);
   const auto random_point = [&] {
     return IntPoint{origin + c(rng) * step, origin + c(rng) * step, origin + c(rng) * step};
   };
@@ -135,11 +138,17 @@ void expect_random_lattice_pairs_match_oracle(std::int64_t origin, std::int64_t 
     return uy * vz - uz * vy == 0 && uz * vx - ux * vz == 0 && ux * vy - uy * vx == 0;
   };
   int tested = 0, met = 0, shared_vertex = 0, mismatches = 0;
-  while (tested < 20000) {
+  const auto share = [](const Tri& a, const Tri& b) {
+    for (const IntPoint& p : a)
+      for (const IntPoint& q : b)
+        if (p == q) return true;
+    return false;
+  };
+  while (tested < pairs) {
     const Tri a{{random_point(), random_point(), random_point()}};
     Tri b{{random_point(), random_point(), random_point()}};
-    if (tested % 3 == 0) b[0] = a[tested % 2];  // force shared vertices often
-    if (degenerate(a) || degenerate(b)) continue;
+    if (!unshared && tested % 3 == 0) b[0] = a[tested % 2];  // force shared vertices often
+    if (degenerate(a) || degenerate(b) || (unshared && share(a, b))) continue;
     ++tested;
     const bool m = meet(a, b);
     met += m;
@@ -147,12 +156,21 @@ void expect_random_lattice_pairs_match_oracle(std::int64_t origin, std::int64_t 
     if (m != oracle_meet(a, b)) ++mismatches;
   }
   EXPECT_EQ(mismatches, 0);
-  EXPECT_GT(met, 1000);
-  EXPECT_LT(met, tested - 1000);
-  EXPECT_GT(shared_vertex, 3000);
+  EXPECT_GT(met, pairs / 20);
+  EXPECT_LT(met, tested - pairs / 20);
+  if (!unshared) EXPECT_GT(shared_vertex, pairs / 7);
 }
 
 TEST(TriangleContact, RandomSmallGridTrianglesMatchRationalOracle) { expect_random_lattice_pairs_match_oracle(0, 1); }
+
+TEST(TriangleContact, RandomUnsharedLatticePairsMatchRationalOracle) {
+  // Pairs without a common vertex that cross each other's planes go through
+  // the two-orientation straddle test; a 3x3x3 and a 5x5x5 lattice give
+  // vertices on the other plane, edges through the other's edges and
+  // vertices, and touching at a single point in every arrangement.
+  expect_random_lattice_pairs_match_oracle(0, 1, 3, 20000, true);
+  expect_random_lattice_pairs_match_oracle(-2, 1, 5, 30000, true);
+}
 
 TEST(TriangleContact, RandomFullRangeTrianglesMatchRationalOracle) {
   // The same lattice stretched over the whole grid, -2^25 .. 2^25 - 1: corner
