@@ -3,17 +3,46 @@
 #include "core/edge_windings.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "ember/geometry/exact_order.hpp"
 
 namespace ember::core {
 
-std::size_t EdgeWindings::KeyHash::operator()(const EdgeKey& k) const {
+std::size_t EdgeWindings::hash(const EdgeKey& k) {
   std::uint64_t h = 0x9E3779B97F4A7C15ull;
   for (const std::int64_t v : {k.a.x, k.a.y, k.a.z, k.b.x, k.b.y, k.b.z}) {
     h ^= static_cast<std::uint64_t>(v) + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
   }
   return static_cast<std::size_t>(h ^ (h >> 31));
+}
+
+std::uint32_t EdgeWindings::first_entry(const EdgeKey& k) const {
+  if (slots_.empty()) return UINT32_MAX;
+  const std::size_t mask = slots_.size() - 1;
+  for (std::size_t i = hash(k) & mask;; i = (i + 1) & mask) {
+    const Slot& s = slots_[i];
+    if (s.head == UINT32_MAX || s.key == k) return s.head;
+  }
+}
+
+std::uint32_t& EdgeWindings::first_entry_slot(const EdgeKey& k) {
+  if (2 * (used_ + 1) > slots_.size()) {  // keep at most half full: short probe runs
+    std::vector<Slot> old = std::exchange(slots_, std::vector<Slot>(std::max<std::size_t>(64, 2 * slots_.size())));
+    used_ = 0;
+    for (const Slot& s : old)
+      if (s.head != UINT32_MAX) first_entry_slot(s.key) = s.head;
+  }
+  const std::size_t mask = slots_.size() - 1;
+  for (std::size_t i = hash(k) & mask;; i = (i + 1) & mask) {
+    Slot& s = slots_[i];
+    if (s.head == UINT32_MAX) {
+      s.key = k;
+      ++used_;
+      return s.head;
+    }
+    if (s.key == k) return s.head;
+  }
 }
 
 void EdgeWindings::begin_polygon(const Soup& soup, const SoupPolygon& t, std::span<const std::uint32_t> related) {
@@ -118,9 +147,8 @@ bool EdgeWindings::find(const Polygon& f, std::span<const char> need_front, std:
     if (k < 0) continue;
     if (edges_[k].state == kUnknown) classify_edge(k);
     if (edges_[k].state == kBlocked) continue;
-    const auto it = head_.find(EdgeKey{c[(k + 1) % 3], c[k]});  // recorded from the other side
-    if (it == head_.end()) continue;
-    for (std::uint32_t x = it->second; x != UINT32_MAX; x = entries_[x].next) {
+    // Recorded from the other side.
+    for (std::uint32_t x = first_entry(EdgeKey{c[(k + 1) % 3], c[k]}); x != UINT32_MAX; x = entries_[x].next) {
       const Entry& e = entries_[x];
       const std::size_t at = 2 * operands_ * e.winding;
       const char* valid = valid_.data() + at;
@@ -149,9 +177,9 @@ void EdgeWindings::record(const Polygon& f, const Wnv& front, const Wnv& back, s
     const int k = input_edge_of(f.edges[i]);
     if (k < 0) continue;
     const auto x = static_cast<std::uint32_t>(entries_.size());
-    auto [it, fresh] = head_.try_emplace(EdgeKey{c[k], c[(k + 1) % 3]}, x);
-    entries_.push_back({f.vertices[i], f.vertices[(i + 1) % n], t_index_, winding, fresh ? UINT32_MAX : it->second});
-    it->second = x;
+    std::uint32_t& first = first_entry_slot(EdgeKey{c[k], c[(k + 1) % 3]});
+    entries_.push_back({f.vertices[i], f.vertices[(i + 1) % n], t_index_, winding, first});
+    first = x;
     stored = true;
   }
   if (!stored) return;

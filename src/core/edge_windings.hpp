@@ -33,7 +33,6 @@
 // are constant there); a piece the BSP refined knows them all.
 #include <cstdint>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 #include "core/soup.hpp"
@@ -68,9 +67,13 @@ class EdgeWindings {
     IntPoint a, b;
     friend bool operator==(const EdgeKey&, const EdgeKey&) = default;
   };
-  struct KeyHash {
-    std::size_t operator()(const EdgeKey& k) const;
-  };
+  static std::size_t hash(const EdgeKey& k);
+  /// First entry recorded under `k` (UINT32_MAX: none). The table is flat
+  /// (open addressing, no allocation per edge: a node-based map's
+  /// allocations were the leaf's most frequent ones).
+  std::uint32_t first_entry(const EdgeKey& k) const;
+  /// The slot holding k's first entry, made (UINT32_MAX) if missing.
+  std::uint32_t& first_entry_slot(const EdgeKey& k);
   /// One edge of a recorded piece on an input edge of its polygon.
   struct Entry {
     Point from, to;              ///< the piece's edge, in its own direction
@@ -103,7 +106,12 @@ class EdgeWindings {
   std::uint32_t t_index_ = 0;
   std::span<const std::uint32_t> related_;
   std::array<InputEdge, 3> edges_{};
-  std::unordered_map<EdgeKey, std::uint32_t, KeyHash> head_;
+  struct Slot {
+    EdgeKey key;
+    std::uint32_t head = UINT32_MAX;  ///< UINT32_MAX: an empty slot
+  };
+  std::vector<Slot> slots_;  ///< power-of-two size, at most half full
+  std::size_t used_ = 0;
   std::vector<Entry> entries_;
   std::vector<int> windings_;  ///< per recorded piece: front then back, operands_ each
   std::vector<char> valid_;    ///< same layout
