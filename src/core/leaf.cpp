@@ -45,12 +45,11 @@ bool coplanar_overlap(const Polygon& a, const Polygon& b) {
 
 /// Case C4 for a coplanar polygon with a higher id: cut the piece along the
 /// edges of `other`; parts outside become new pieces.
-void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& other) {
-  Polygon neg, pos;
+void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& other, Polygon& neg, Polygon& pos) {
   for (const Plane& e : other.edges) {
     if (clip(pieces[i].poly, e, neg, pos) != ClipSide::Both) continue;
-    pieces.push_back({pos});
-    std::swap(pieces[i].poly, neg);
+    pieces.push_back({std::move(pos)});
+    std::swap(pieces[i].poly, neg);  // the old piece's buffers serve the next clip
   }
 }
 
@@ -60,17 +59,17 @@ void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& o
 /// piece's plane.
 void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& support, const Polygon& other,
                        const std::vector<std::int8_t>& other_signs, std::vector<std::int8_t>& signs,
-                       std::vector<Plane>& cons) {
+                       std::vector<Plane>& cons, Polygon& neg, Polygon& pos) {
   const Polygon& poly = pieces[i].poly;
-  bool neg = false, pos = false;
+  bool below = false, above = false;
   signs.resize(poly.vertices.size());
   for (std::size_t v = 0; v < poly.vertices.size(); ++v) {
     const int s = classify(poly.vertices[v], other.support);
     signs[v] = static_cast<std::int8_t>(s);
-    neg |= s < 0;
-    pos |= s > 0;
+    below |= s < 0;
+    above |= s > 0;
   }
-  if (!(neg && pos)) return;
+  if (!(below && above)) return;
   const ChordOverlap filtered = filter_chords(poly, support, signs, other, other.support, other_signs);
   if (filtered == ChordOverlap::kNo) return;
   if (filtered == ChordOverlap::kUnsure) {
@@ -79,10 +78,9 @@ void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& s
     chord_constraints(other, other_signs, cons);
     if (!line_region_has_length(support, other.support, cons)) return;
   }
-  Polygon n, p;
-  if (clip(poly, signs, other.support, n, p) != ClipSide::Both) return;
-  pieces[i].poly = std::move(n);
-  pieces.push_back({std::move(p)});
+  if (clip(poly, signs, other.support, neg, pos) != ClipSide::Both) return;
+  std::swap(pieces[i].poly, neg);  // the old piece's buffers serve the next clip
+  pieces.push_back({std::move(pos)});
 }
 
 /// Classifies o's vertices against a plane; false if all lie strictly on
@@ -112,6 +110,7 @@ struct LeafScratch {
   std::uint32_t stamp = 0;
   std::size_t n_front = 0, n_back = 0;  ///< free operands per side
   std::vector<Piece> sub, next;         ///< refinement of one piece; pieces being rebuilt
+  Polygon neg, pos;                     ///< clip outputs (a cut's old piece hands its buffers on)
   /// The leaf soup's approximations (soup.hpp) for the filters of gather and
   /// of the traces; empty outside solve_leaf and in small leaves.
   SoupApprox approx;
@@ -249,7 +248,7 @@ bool disable_covered(const Soup& soup, const SoupPolygon& t, const SolveContext&
       // The parts outside o stay; the part inside o is o's to emit.
       for (const Plane& e : o.poly->edges) {
         if (clip(p.poly, e, neg, pos) != ClipSide::Both) continue;
-        next.push_back({pos});
+        next.push_back({std::move(pos)});
         std::swap(p.poly, neg);
       }
       cut = true;
@@ -289,12 +288,12 @@ void refine(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, boo
       if (o.id < t.id || (ctx.closed[o.operand] && !face)) continue;
       const std::size_t n = pieces.size();
       for (std::size_t i = 0; i < n; ++i)
-        if (coplanar_overlap(pieces[i].poly, *o.poly)) cut_by_coplanar(pieces, i, *o.poly);
+        if (coplanar_overlap(pieces[i].poly, *o.poly)) cut_by_coplanar(pieces, i, *o.poly, sc.neg, sc.pos);
     } else {
       sc.other_signs.assign(sc.related_signs.begin() + at, sc.related_signs.begin() + end);
       const std::size_t n = pieces.size();
       for (std::size_t i = 0; i < n; ++i)
-        cut_by_transverse(pieces, i, t.poly->support, *o.poly, sc.other_signs, sc.signs, sc.cons);
+        cut_by_transverse(pieces, i, t.poly->support, *o.poly, sc.other_signs, sc.signs, sc.cons, sc.neg, sc.pos);
     }
   }
 }
