@@ -144,7 +144,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   // the rounding, closedness, and the root soup.
   core::GridInput gi;
   core::InputSoup in;
-  std::vector<std::size_t> open;
+  core::EdgeMatching edges;
   Quantizer q;
   arena.execute([&] {
     core::validate_operands(operands);
@@ -153,8 +153,8 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     result.stats.grid_step = q.grid_spacing();
     result.stats.operands.resize(operands.size());
     core::audit_quantization(operands, gi, q, result.stats.operands, result.warnings);
-    open = core::count_open_edges(gi);
-    in = core::build_soup(gi);
+    edges = core::match_edges(gi);
+    in = core::build_soup(gi, edges.manifold);
   });
   for (const OperandReport& r : result.stats.operands) {
     result.stats.collapsed_triangles += r.collapsed_triangles;
@@ -163,17 +163,21 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   result.stats.input_triangles = gi.triangles.size();
   result.stats.dropped_degenerate = in.dropped_degenerate;
   const std::array<std::int64_t, 3> lo = gi.lo, hi = gi.hi;
-  // The mesh stage welds unbuilt triangles' corners through these ids.
-  std::optional<core::InputVertexIds> vertex_ids = core::InputVertexIds{};
-  vertex_ids->operand_base.push_back(0);
+  // The mesh stage welds unbuilt triangles' corners through these ids; with
+  // the manifold edges and the solid flags it narrows the T-junction search
+  // (InputTopology, mesh_output.hpp).
+  std::optional<core::InputTopology> topology = core::InputTopology{};
+  topology->operand_base.push_back(0);
   for (const std::size_t count : gi.vertex_count) {
-    if (count > UINT32_MAX - 1 - vertex_ids->operand_base.back()) {
-      vertex_ids.reset();  // too many to number in 32 bits: the weld sorts every corner
+    if (count > UINT32_MAX - 1 - topology->operand_base.back()) {
+      topology.reset();  // too many to number in 32 bits: the weld sorts every corner
       break;
     }
-    vertex_ids->operand_base.push_back(vertex_ids->operand_base.back() + static_cast<std::uint32_t>(count));
+    topology->operand_base.push_back(topology->operand_base.back() + static_cast<std::uint32_t>(count));
   }
   gi = {};
+  edges.manifold = {};
+  const std::vector<std::size_t>& open = edges.open;
   for (std::size_t o = 0; o < operands.size(); ++o) {
     result.stats.operands[o].open_edges = open[o];
     if (open[o] == 0) continue;
@@ -234,6 +238,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       }
     }
     for (const char s : ctx.solid) result.stats.solid_operands += s != 0;
+    if (topology) topology->solid = ctx.solid;
     proved = std::chrono::steady_clock::now();
     result.stats.proof_ms = ms_between(setup_done, proved);
     report(options, "solve", 0.2);
@@ -251,8 +256,11 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     arena.execute([&] { result.mesh = export_mesh(polys, q, sources, result.provenance, result.stats.dropped_slivers); });
   } else {
     core::MeshOutput m;
-    if (vertex_ids) vertex_ids->by_triangle = grid.vertex_ids;
-    arena.execute([&] { m = core::build_triangle_mesh(polys, q, sources, vertex_ids ? &*vertex_ids : nullptr); });
+    if (topology) {
+      topology->by_triangle = grid.vertex_ids;
+      topology->manifold_edges = grid.manifold_edges;
+    }
+    arena.execute([&] { m = core::build_triangle_mesh(polys, q, sources, topology ? &*topology : nullptr); });
     result.mesh = std::move(m.mesh);
     result.provenance = std::move(m.provenance);
     result.stats.tjunctions_resolved = m.stats.tjunctions;

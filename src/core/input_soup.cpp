@@ -71,24 +71,29 @@ void validate_operands(std::span<const Mesh> operands) {
   }
 }
 
-std::vector<std::size_t> count_open_edges(const GridInput& gi) {
+EdgeMatching match_edges(const GridInput& gi) {
   const std::size_t operands = gi.vertex_count.size();
-  std::vector<std::size_t> open(operands, 0);
+  EdgeMatching m;
+  m.open.assign(operands, 0);
+  m.manifold.assign(gi.vertex_ids.size(), 0);
   tbb::parallel_for(std::size_t{0}, operands, [&](std::size_t o) {
+    const std::size_t begin = gi.operand_begin[o];
     WeldedTriangles welded;
-    welded.ids.assign(gi.vertex_ids.begin() + static_cast<std::ptrdiff_t>(gi.operand_begin[o]),
+    welded.ids.assign(gi.vertex_ids.begin() + static_cast<std::ptrdiff_t>(begin),
                       gi.vertex_ids.begin() + static_cast<std::ptrdiff_t>(gi.operand_begin[o + 1]));
     welded.vertex_count = gi.vertex_count[o];
     for_each_edge(welded, [&](std::span<const EdgeUse> uses) {
       int balance = 0;
       for (const EdgeUse& u : uses) balance += u.forward ? 1 : -1;
-      open[o] += balance != 0;
+      m.open[o] += balance != 0;
+      if (uses.size() != 2 || uses[0].forward == uses[1].forward) return;
+      for (const EdgeUse& u : uses) m.manifold[begin + u.tri] |= static_cast<std::uint8_t>(1u << u.edge);
     });
   });
-  return open;
+  return m;
 }
 
-InputSoup build_soup(const GridInput& gi) {
+InputSoup build_soup(const GridInput& gi, std::span<const std::uint8_t> manifold) {
   const std::size_t n = gi.triangles.size();
   // Pass 1: which triangles have area (the exact grid normal is non-zero;
   // make_triangle decides the same).
@@ -119,6 +124,7 @@ InputSoup build_soup(const GridInput& gi) {
   in.sources.resize(kept);
   in.grid.corners.resize(kept);
   in.grid.vertex_ids.resize(kept);
+  in.grid.manifold_edges.resize(kept);
   // Pass 2: triangle i (kept when id[i + 1] > id[i]) becomes polygon id[i].
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
@@ -131,6 +137,7 @@ InputSoup build_soup(const GridInput& gi) {
       in.soup[k] = unbuilt_triangle(in.grid.corners[k], k, t.operand);
       in.sources[k] = {t.operand, t.face};
       in.grid.vertex_ids[k] = gi.vertex_ids[i];
+      in.grid.manifold_edges[k] = manifold[i];
     }
   });
   return in;

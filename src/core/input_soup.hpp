@@ -2,6 +2,7 @@
 // The Boolean's input stage after quantization (grid_input.hpp): validation
 // of the caller's meshes, closedness, and the soup the core solves. Every
 // step is parallel and its result independent of scheduling.
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -17,23 +18,33 @@ namespace ember::core {
 /// fewer than 3 corners, vertex indices out of range, non-finite coordinates.
 void validate_operands(std::span<const Mesh> operands);
 
-/// Per operand, the undirected edges whose uses in one direction are not
-/// matched by uses in the other (on the welded grid positions, degenerate
-/// triangles included: the surface the core actually sees). 0 = closed.
-std::vector<std::size_t> count_open_edges(const GridInput& gi);
+/// The input's edges matched on the welded grid positions, degenerate
+/// triangles included (the surface the core actually sees).
+struct EdgeMatching {
+  /// Per operand, the undirected edges whose uses in one direction are not
+  /// matched by uses in the other. 0 = closed.
+  std::vector<std::size_t> open;
+  /// Per triangle (GridInput order): bit k set when its edge k (corner k to
+  /// corner k + 1) is used by exactly one other triangle of its operand, in
+  /// the opposite direction (a manifold edge; the mesh stage's T-junction
+  /// search relies on it, mesh_output.hpp).
+  std::vector<std::uint8_t> manifold;
+};
+EdgeMatching match_edges(const GridInput& gi);
 
 /// The non-degenerate grid triangles as the root soup: ids in input order
 /// (the total order of coplanar overlaps), sources[id] their origin,
 /// grid.corners by id (the soup's unbuilt triangles point into it, so it must
 /// outlive the soup and the solve's output; the solid proof and
-/// merge_whole_triangles read it too) and grid.vertex_ids by id (the solid
-/// proof's edge matching, the mesh stage's weld).
+/// merge_whole_triangles read it too), grid.vertex_ids by id (the solid
+/// proof's edge matching, the mesh stage's weld) and grid.manifold_edges by
+/// id (from `manifold`, which is EdgeMatching's, in GridInput order).
 struct InputSoup {
   Soup soup;
   std::vector<Provenance> sources;
   GridTriangles grid;
   std::size_t dropped_degenerate = 0;
 };
-InputSoup build_soup(const GridInput& gi);
+InputSoup build_soup(const GridInput& gi, std::span<const std::uint8_t> manifold);
 
 }  // namespace ember::core

@@ -34,6 +34,8 @@ struct GridTriangles {
   std::vector<std::array<IntPoint, 3>> corners;
   /// Welded vertex ids (weld.hpp): within one operand, equal ids iff equal positions.
   std::vector<std::array<std::uint32_t, 3>> vertex_ids;
+  /// Bit k: edge k is a manifold edge of its operand (EdgeMatching::manifold).
+  std::vector<std::uint8_t> manifold_edges;
 };
 
 /// The verdict and, for the user, how much evidence was found against it.

@@ -21,6 +21,7 @@ struct EdgeUse {
   std::uint32_t hi;   ///< the edge's higher vertex id
   std::uint32_t tri;  ///< the triangle using it
   bool forward;       ///< the triangle runs lo -> hi
+  std::uint8_t edge;  ///< which edge of the triangle: corner edge -> edge + 1
   friend bool operator<(const EdgeUse& x, const EdgeUse& y) { return x.hi != y.hi ? x.hi < y.hi : x.tri < y.tri; }
 };
 
@@ -39,7 +40,7 @@ void for_each_edge(const WeldedTriangles& welded, F&& f) {
   for (std::uint32_t t = 0; t < welded.ids.size(); ++t)
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t a = welded.ids[t][e], b = welded.ids[t][(e + 1) % 3];
-      if (a != b) uses[fill[std::min(a, b)]++] = {std::max(a, b), t, a < b};
+      if (a != b) uses[fill[std::min(a, b)]++] = {std::max(a, b), t, a < b, static_cast<std::uint8_t>(e)};
     }
   for (std::size_t v = 0; v + 1 < start.size(); ++v) {
     const auto first = uses.begin() + start[v], last = uses.begin() + start[v + 1];

@@ -80,7 +80,7 @@ TEST(ExactWeld, InputVertexIdsGiveTheSameIdsAsWeldingEveryCorner) {
   const Quantizer q = Quantizer::fit_box({-1, -1, -1}, {1, 1, 1});
   for (std::uint32_t seed = 1; seed <= 5; ++seed) {
     const WeldCase c = make_case(seed);
-    InputVertexIds ids;
+    InputTopology ids;
     ids.by_triangle = c.vertex;
     ids.operand_base = {0, 60, 120};  // operand o's vertex v is o * 60 + v
     const OutputVertices plain = exact_weld(c.polys, q);

@@ -158,7 +158,9 @@ void expect_random_lattice_pairs_match_oracle(std::int64_t origin, std::int64_t 
   EXPECT_EQ(mismatches, 0);
   EXPECT_GT(met, pairs / 20);
   EXPECT_LT(met, tested - pairs / 20);
-  if (!unshared) EXPECT_GT(shared_vertex, pairs / 7);
+  if (!unshared) {
+    EXPECT_GT(shared_vertex, pairs / 7);
+  }
 }
 
 TEST(TriangleContact, RandomSmallGridTrianglesMatchRationalOracle) { expect_random_lattice_pairs_match_oracle(0, 1); }

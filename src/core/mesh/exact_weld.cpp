@@ -63,13 +63,13 @@ struct CornerLayout {
 };
 
 /// Whether p's corners are folded into their input vertices' items.
-bool folded(const OutputPolygon& p, const InputVertexIds* ids) { return ids && unbuilt(p); }
+bool folded(const OutputPolygon& p, const InputTopology* ids) { return ids && unbuilt(p); }
 
-std::uint32_t input_vertex(const OutputPolygon& p, std::uint32_t k, const InputVertexIds& ids) {
+std::uint32_t input_vertex(const OutputPolygon& p, std::uint32_t k, const InputTopology& ids) {
   return ids.operand_base[p.operand] + ids.by_triangle[p.id][k];
 }
 
-CornerLayout lay_out_corners(std::span<const OutputPolygon> polys, const Cycles& corners, const InputVertexIds* ids) {
+CornerLayout lay_out_corners(std::span<const OutputPolygon> polys, const Cycles& corners, const InputTopology* ids) {
   CornerLayout l;
   l.built_before.resize(polys.size() + 1, 0);
   for (std::size_t i = 0; i < polys.size(); ++i)
@@ -91,7 +91,7 @@ const Point& item_point(std::span<const OutputPolygon> polys, const Item& it) { 
 
 }  // namespace
 
-OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer& q, const InputVertexIds* ids) {
+OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer& q, const InputTopology* ids) {
   OutputVertices out;
   Cycles& corners = out.corners;
   corners.offsets.resize(polys.size() + 1, 0);

@@ -125,14 +125,14 @@ void assemble(const RegionTriangles& direct, const Regions& regions,
 }  // namespace
 
 MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quantizer& q,
-                               std::span<const Provenance> sources, const InputVertexIds* ids) {
+                               std::span<const Provenance> sources, const InputTopology* ids) {
   MeshOutput out;
   auto clock = std::chrono::steady_clock::now();
   const OutputVertices verts = exact_weld(polys, q, ids);
   out.stats.weld_ms = ms_since(clock);
-  const VertexIndex index = index_output_vertices(polys, verts);
+  const VertexIndex index = index_output_vertices(polys, verts, ids);
   const EdgePairs pairs = group_edges_by_pair(verts.corners);
-  const Cycles cycles = insert_tjunction_vertices(polys, verts, index, pairs, out.stats.tjunctions);
+  const Cycles cycles = insert_tjunction_vertices(polys, verts, index, pairs, out.stats.tjunctions, ids);
   out.stats.tjunction_ms = ms_since(clock);
   // Whole triangles that nothing can join go straight to the output; their
   // corners stay where they are.

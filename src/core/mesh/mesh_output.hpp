@@ -57,25 +57,37 @@ struct OutputVertices {
   Cycles corners;               ///< per output polygon: its corners' ids, in the polygon's own order
 };
 
-/// The set-up's welded grid vertex ids of the input triangles (by source id),
-/// made global: corner k of triangle t of operand o is vertex
-/// operand_base[o] + by_triangle[t][k]. Equal ids are equal points; equal
-/// points of different operands have different ids.
-struct InputVertexIds {
+/// What the set-up and the proof know about the input triangles (by id).
+/// Their welded grid vertex ids, made global: corner k of triangle t of
+/// operand o is vertex operand_base[o] + by_triangle[t][k]. Equal ids are
+/// equal points; equal points of different operands have different ids.
+struct InputTopology {
   std::span<const std::array<std::uint32_t, 3>> by_triangle;
   std::vector<std::uint32_t> operand_base;  ///< one per operand, then the total
+  /// Bit k of triangle t: its edge k is a manifold edge of its operand
+  /// (EdgeMatching::manifold). Empty: unknown.
+  std::span<const std::uint8_t> manifold_edges;
+  /// Per operand: solid (proven or promised; no two of its triangles meet
+  /// beyond a shared vertex or edge). Empty: unknown.
+  std::vector<char> solid;
 };
 
 /// Step 1. Polygons keep their stored (unflipped) vertex order. With `ids`,
 /// the corners of unbuilt triangles are welded through their input vertex
 /// ids (faster; the same result).
 OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer& q,
-                          const InputVertexIds* ids = nullptr);
+                          const InputTopology* ids = nullptr);
 
 class VertexIndex;  // core/mesh/vertex_index.hpp
 
-/// Every output vertex, bucketed for searches along segments.
-VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts);
+/// Every output vertex, bucketed for searches along segments. With two
+/// operands of which one is solid and `topology`'s manifold edges, each
+/// cell is ordered by which operands' polygons use the vertex, so that step
+/// 2 can search an edge between two whole triangles of a solid operand for
+/// the other operand's vertices alone (tjunctions.cpp, whole_solid_edge):
+/// far from the other operand those parts of the cells are empty.
+VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts,
+                                  const InputTopology* topology = nullptr);
 
 /// The corner edges (corner c runs from corners.ids[c] to the next corner of
 /// its polygon) grouped by undirected id pair: every edge of a pair is the
@@ -90,9 +102,11 @@ EdgePairs group_edges_by_pair(const Cycles& corners);
 
 /// Step 2. Per polygon (unflipped order): corners with every vertex that lies
 /// in the open interior of an edge inserted in order along it. Counts the
-/// insertions in `inserted`. `pairs` groups verts.corners.
+/// insertions in `inserted`. `pairs` groups verts.corners. `index` must have
+/// been built with the same `topology`.
 Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts,
-                                 const VertexIndex& index, const EdgePairs& pairs, std::size_t& inserted);
+                                 const VertexIndex& index, const EdgePairs& pairs, std::size_t& inserted,
+                                 const InputTopology* topology = nullptr);
 
 /// Step 2b. Per polygon, 1 if it leaves the mesh stage as it came: an
 /// unbuilt triangle (a whole input triangle) that gained no vertex in step 2
@@ -207,6 +221,6 @@ struct MeshOutput {
 /// Steps 1-4. `sources[id]` is the provenance of source polygon id; `ids`
 /// (optional) speeds up step 1.
 MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quantizer& q,
-                               std::span<const Provenance> sources, const InputVertexIds* ids = nullptr);
+                               std::span<const Provenance> sources, const InputTopology* ids = nullptr);
 
 }  // namespace ember::core

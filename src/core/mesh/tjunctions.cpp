@@ -21,6 +21,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "core/mesh/mesh_output.hpp"
@@ -56,7 +57,7 @@ double mean_edge_length(std::span<const OutputPolygon> polys, const OutputVertic
 /// which they differ. Candidates are rare, so the exact tests on the welded
 /// points cost little.
 void edge_interior_vertices(const Plane& support, std::uint32_t a, std::uint32_t b, const OutputVertices& verts,
-                            const VertexIndex& index, std::vector<std::uint32_t>& found) {
+                            const VertexIndex& index, VertexIndex::Part part, std::vector<std::uint32_t>& found) {
   const Point &pa = verts.exact[a], &pb = verts.exact[b];
   // Points on one line are ordered alike by any coordinate in which the end
   // points differ: found on the first collinear candidate (most edges have none).
@@ -72,7 +73,7 @@ void edge_interior_vertices(const Plane& support, std::uint32_t a, std::uint32_t
       dir = compare_coord(pa, pb, axis);  // a != b: not 0
     }
     if (compare_coord(pa, x, axis) == dir && compare_coord(x, pb, axis) == dir) found.push_back(v);
-  });
+  }, part);
   if (found.size() < 2) return;
   std::sort(found.begin(), found.end());
   found.erase(std::unique(found.begin(), found.end()), found.end());
@@ -82,6 +83,25 @@ void edge_interior_vertices(const Plane& support, std::uint32_t a, std::uint32_t
   });
 }
 
+
+/// The operand o when pair `run` is the edge between exactly two whole
+/// input triangles of solid operand o, on a manifold edge of o; -1
+/// otherwise. Then no other polygon of o has a vertex inside the edge: its
+/// triangle would meet one of the two beyond a shared vertex or edge (the
+/// proof rules that out) or share the edge (a third use: not manifold). Both
+/// uses being unbuilt triangles of o on the same two points, the second one
+/// is the edge's other input use, so one manifold bit decides.
+int whole_solid_edge(std::size_t run, std::span<const OutputPolygon> polys, const Cycles& corners,
+                     const EdgePairs& pairs, const InputTopology& topology) {
+  const std::uint32_t first = pairs.run_begin[run];
+  if (pairs.run_begin[run + 1] - first != 2) return -1;
+  const std::uint32_t c = pairs.corner[first];
+  const std::uint32_t p = pairs.poly_of[c], q = pairs.poly_of[pairs.corner[first + 1]];
+  const OutputPolygon &a = polys[p], &b = polys[q];
+  if (!unbuilt(a) || !unbuilt(b) || a.operand != b.operand || !topology.solid[a.operand]) return -1;
+  const std::uint32_t k = c - corners.offsets[p];  // an unbuilt triangle's corner k is its grid corner k
+  return (topology.manifold_edges[a.id] >> k) & 1u ? static_cast<int>(a.operand) : -1;
+}
 
 }  // namespace
 
@@ -114,14 +134,40 @@ EdgePairs group_edges_by_pair(const Cycles& corners) {
 }
 
 
-VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts) {
+namespace {
+/// Whether index_output_vertices orders cells by operand (and step 2 uses it).
+bool search_by_operand(const InputTopology* topology) {
+  return topology && topology->solid.size() == 2 && !topology->manifold_edges.empty() &&
+         (topology->solid[0] || topology->solid[1]);
+}
+}  // namespace
+
+VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts,
+                                  const InputTopology* topology) {
   std::vector<std::uint32_t> everyone(verts.exact.size());
   for (std::uint32_t v = 0; v < everyone.size(); ++v) everyone[v] = v;
-  return VertexIndex(verts.rounded, std::move(everyone), mean_edge_length(polys, verts));
+  const double cell = mean_edge_length(polys, verts);
+  if (!search_by_operand(topology)) return VertexIndex(verts.rounded, std::move(everyone), cell);
+  // Bit o of used_by[v]: some polygon of operand o has v as a corner. Class
+  // 0: used by operand 1 only, 1: by both, 2: by operand 0 only; the vertices
+  // of operand 1's polygons are then classes 0-1 (Part::kLow), operand 0's
+  // classes 1-2 (Part::kHigh).
+  std::vector<std::uint8_t> used_by(verts.exact.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 1024), [&](const auto& r) {
+    for (std::size_t p = r.begin(); p != r.end(); ++p)
+      for (const std::uint32_t v : verts.corners[p])
+        std::atomic_ref<std::uint8_t>(used_by[v]).fetch_or(static_cast<std::uint8_t>(1u << polys[p].operand),
+                                                           std::memory_order_relaxed);
+  });
+  constexpr std::uint8_t kClass[4] = {0, 2, 0, 1};  // by used_by; 0 (unused) cannot occur
+  for (std::uint8_t& u : used_by) u = kClass[u];
+  return VertexIndex(verts.rounded, std::move(everyone), cell, used_by);
 }
 
 Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts,
-                                 const VertexIndex& index, const EdgePairs& pairs, std::size_t& inserted) {
+                                 const VertexIndex& index, const EdgePairs& pairs, std::size_t& inserted,
+                                 const InputTopology* topology) {
+  const bool by_operand = search_by_operand(topology);
   const Cycles& corners = verts.corners;
   // Per pair: the vertices inside its segment, ordered from the pair's first
   // corner's start vertex (most pairs have none and allocate nothing).
@@ -134,7 +180,11 @@ Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const Out
       const auto ids = corners[p];
       const std::uint32_t a = ids[c - corners.offsets[p]], b = ids[(c - corners.offsets[p] + 1) % ids.size()];
       if (a == b) continue;
-      edge_interior_vertices(support_of(polys[p]), a, b, verts, index, found);
+      // Only the other operand's vertices can lie inside an edge between two
+      // whole triangles of a solid operand (whole_solid_edge).
+      const int o = by_operand ? whole_solid_edge(run, polys, corners, pairs, *topology) : -1;
+      const VertexIndex::Part part = o < 0 ? VertexIndex::Part::kAll : (o == 0 ? VertexIndex::Part::kLow : VertexIndex::Part::kHigh);
+      edge_interior_vertices(support_of(polys[p]), a, b, verts, index, part, found);
       if (!found.empty()) inside[run] = found;
     }
   });

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -43,9 +44,17 @@ inline bool clearly_off_segment(const Vec3d& ra, const Vec3d& rb, const Vec3d& r
 /// A set of vertices bucketed in a uniform grid over their rounded positions
 /// (cells about one mean edge long, found through a hash table). Positions
 /// are copied so that a query touches only the set's own memory.
+///
+/// Members may carry a class 0, 1 or 2; within a cell they are ordered by
+/// class, so a query can visit classes 0-1 (Part::kLow) or 1-2
+/// (Part::kHigh) alone at no extra cost (the T-junction search's "vertices
+/// of the other operand": tjunctions.cpp).
 class VertexIndex {
  public:
-  VertexIndex(const std::vector<Vec3d>& all, std::vector<std::uint32_t> members, double mean_edge)
+  enum class Part { kAll, kLow, kHigh };
+
+  VertexIndex(const std::vector<Vec3d>& all, std::vector<std::uint32_t> members, double mean_edge,
+              std::span<const std::uint8_t> member_class = {})
       : ids_(std::move(members)) {
     if (ids_.empty()) return;
     pos_.resize(ids_.size());
@@ -55,6 +64,17 @@ class VertexIndex {
       lo_ = {std::min(lo_.x, p.x), std::min(lo_.y, p.y), std::min(lo_.z, p.z)};
       hi_ = {std::max(hi_.x, p.x), std::max(hi_.y, p.y), std::max(hi_.z, p.z)};
     }
+    // Each part's own bounds (a query far from a part's members stops at once).
+    for (std::size_t i = 0; i < pos_.size(); ++i) {
+      const int c = member_class.empty() ? 1 : member_class[i];
+      for (const Part part : {Part::kLow, Part::kHigh}) {
+        if (part == Part::kLow ? c > 1 : c < 1) continue;
+        Bounds& b = bounds_[static_cast<int>(part)];
+        b.lo = {std::min(b.lo.x, pos_[i].x), std::min(b.lo.y, pos_[i].y), std::min(b.lo.z, pos_[i].z)};
+        b.hi = {std::max(b.hi.x, pos_[i].x), std::max(b.hi.y, pos_[i].y), std::max(b.hi.z, pos_[i].z)};
+      }
+    }
+    bounds_[static_cast<int>(Part::kAll)] = {lo_, hi_};
     const double extent = std::max({hi_.x - lo_.x, hi_.y - lo_.y, hi_.z - lo_.z});
     cell_ = std::max(mean_edge, extent * 0x1p-20);
     if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = 1;
@@ -62,21 +82,29 @@ class VertexIndex {
     if (!std::isfinite(inverse_cell_)) inverse_cell_ = 0x1p1000;  // a subnormal cell: cells clamp to the grid's edge
     const auto n = static_cast<std::uint32_t>(pos_.size());
     cells_.resize(n);
-    for (std::uint32_t i = 0; i < n; ++i) cells_[i] = {key(cell_of(pos_[i])), i};
+    // Sort key: the cell (60 bits), then the class (2 bits).
+    for (std::uint32_t i = 0; i < n; ++i)
+      cells_[i] = {key(cell_of(pos_[i])) << 2 | (member_class.empty() ? 0u : member_class[i]), i};
     sort_pairs(cells_);
     // Open-addressing table: occupied cell key -> its run in cells_.
     std::size_t runs = 0;
-    for (std::size_t i = 0; i < n; ++i) runs += i == 0 || cells_[i].first != cells_[i - 1].first;
+    for (std::size_t i = 0; i < n; ++i) runs += i == 0 || cells_[i].first >> 2 != cells_[i - 1].first >> 2;
     std::size_t size = 16;
     while (size < 2 * runs) size *= 2;
     slots_.assign(size, Slot{});
     for (std::uint32_t i = 0; i < n;) {
-      std::uint32_t j = i;
-      while (j < n && cells_[j].first == cells_[i].first) ++j;
-      std::size_t h = hash(cells_[i].first) & (size - 1);
+      const std::uint64_t cell = cells_[i].first >> 2;
+      Slot slot{cell, i, i, i, i};
+      while (slot.end < n && cells_[slot.end].first >> 2 == cell) {
+        const auto c = static_cast<std::uint32_t>(cells_[slot.end].first & 3);
+        ++slot.end;
+        if (c < 1) slot.class1 = slot.end;
+        if (c < 2) slot.class2 = slot.end;
+      }
+      std::size_t h = hash(cell) & (size - 1);
       while (slots_[h].end != 0) h = (h + 1) & (size - 1);
-      slots_[h] = {cells_[i].first, i, j};
-      i = j;
+      slots_[h] = slot;
+      i = slot.end;
     }
   }
 
@@ -89,12 +117,12 @@ class VertexIndex {
   /// a long edge visits the cells along it rather than its whole box. A
   /// member near two pieces may be reported twice.
   template <typename F>
-  void for_each_near_segment(const Vec3d& ra, const Vec3d& rb, F&& f) const {
+  void for_each_near_segment(const Vec3d& ra, const Vec3d& rb, F&& f, Part part = Part::kAll) const {
     const Vec3d lo{std::min(ra.x, rb.x), std::min(ra.y, rb.y), std::min(ra.z, rb.z)};
     const Vec3d hi{std::max(ra.x, rb.x), std::max(ra.y, rb.y), std::max(ra.z, rb.z)};
     const double span = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     const double pieces = std::min(std::ceil(span / cell_), 65536.0);
-    if (!(pieces > 2)) return for_each_in_box(lo, hi, f);
+    if (!(pieces > 2)) return for_each_in_box(lo, hi, f, part);
     const double pad = 0x1p-40 * std::max({std::fabs(lo.x), std::fabs(lo.y), std::fabs(lo.z), std::fabs(hi.x),
                                            std::fabs(hi.y), std::fabs(hi.z)});
     const auto n = static_cast<int>(pieces);
@@ -109,16 +137,17 @@ class VertexIndex {
                     std::max(lo.z, std::min(p0.z, p1.z) - pad)};
       const Vec3d h{std::min(hi.x, std::max(p0.x, p1.x) + pad), std::min(hi.y, std::max(p0.y, p1.y) + pad),
                     std::min(hi.z, std::max(p0.z, p1.z) + pad)};
-      for_each_in_box(l, h, f);
+      for_each_in_box(l, h, f, part);
       p0 = p1;
     }
   }
 
-  /// Calls f(v) for every member whose rounded position lies in [lo, hi].
+  /// Calls f(v) for every member of `part` whose rounded position lies in [lo, hi].
   template <typename F>
-  void for_each_in_box(const Vec3d& lo, const Vec3d& hi, F&& f) const {
-    if (pos_.empty() || hi.x < lo_.x || hi.y < lo_.y || hi.z < lo_.z || lo.x > hi_.x || lo.y > hi_.y ||
-        lo.z > hi_.z)
+  void for_each_in_box(const Vec3d& lo, const Vec3d& hi, F&& f, Part part = Part::kAll) const {
+    const Bounds& b = bounds_[static_cast<int>(part)];
+    if (pos_.empty() || hi.x < b.lo.x || hi.y < b.lo.y || hi.z < b.lo.z || lo.x > b.hi.x || lo.y > b.hi.y ||
+        lo.z > b.hi.z)
       return;
     const std::array<std::int64_t, 3> c0 = cell_of(lo), c1 = cell_of(hi);
     auto inside = [&](std::uint32_t i) {
@@ -129,7 +158,9 @@ class VertexIndex {
       for (std::int64_t y = c0[1]; y <= c1[1]; ++y)
         for (std::int64_t z = c0[2]; z <= c1[2]; ++z) {
           const Slot& slot = find(key({x, y, z}));
-          for (std::uint32_t i = slot.begin; i < slot.end; ++i)
+          const std::uint32_t begin = part == Part::kHigh ? slot.class1 : slot.begin;
+          const std::uint32_t end = part == Part::kLow ? slot.class2 : slot.end;
+          for (std::uint32_t i = begin; i < end; ++i)
             if (inside(cells_[i].second)) f(ids_[cells_[i].second]);
         }
   }
@@ -152,11 +183,16 @@ class VertexIndex {
   std::vector<std::uint32_t> ids_;  ///< member i is output vertex ids_[i]
   std::vector<Vec3d> pos_;
   Vec3d lo_{}, hi_{};
+  struct Bounds {  ///< empty: lo > hi
+    Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  };
+  std::array<Bounds, 3> bounds_{};  ///< by Part
   double cell_ = 1, inverse_cell_ = 1;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> cells_;  ///< (cell key, member), sorted
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> cells_;  ///< (cell key << 2 | class, member), sorted
   struct Slot {
     std::uint64_t key = 0;
     std::uint32_t begin = 0, end = 0;  ///< run in cells_; end == 0: empty slot
+    std::uint32_t class1 = 0, class2 = 0;  ///< where classes 1 and 2 begin in the run
   };
   std::vector<Slot> slots_;
   static std::uint64_t hash(std::uint64_t k) { return (k ^ (k >> 29)) * 0x9E3779B97F4A7C15ull >> 20; }
