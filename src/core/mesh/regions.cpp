@@ -66,10 +66,18 @@ struct UnionFind {
 };
 
 /// Oriented cycle of piece p: reversed when the piece is emitted flipped.
-std::vector<std::uint32_t> oriented_cycle(const OutputPolygon& poly, std::span<const std::uint32_t> ids) {
-  std::vector<std::uint32_t> c(ids.begin(), ids.end());
-  if (poly.flip) std::reverse(c.begin(), c.end());
-  return c;
+/// Calls f(a, b) for every edge of poly's cycle `ids` in the orientation it
+/// is emitted with (reversed for a flipped piece), without copying the cycle.
+template <typename F>
+void for_each_oriented_edge(const OutputPolygon& poly, std::span<const std::uint32_t> ids, F&& f) {
+  const std::size_t n = ids.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (poly.flip) {
+      f(ids[n - 1 - k], ids[(2 * n - 2 - k) % n]);
+    } else {
+      f(ids[k], ids[(k + 1) % n]);
+    }
+  }
 }
 
 /// At vertex b, entered from a: the candidate edge that comes first when
@@ -173,15 +181,13 @@ GroupResult build_group(std::span<const OutputPolygon> polys, const Cycles& cycl
     std::uint32_t member;
   };
   std::vector<DirEdge> dir;
-  std::vector<std::vector<std::uint32_t>> oriented(members.size());
-  for (std::uint32_t m = 0; m < members.size(); ++m) {
-    oriented[m] = oriented_cycle(polys[members[m]], cycles[members[m]]);
-    const auto& c = oriented[m];
-    for (std::size_t k = 0; k < c.size(); ++k) {
-      const std::uint32_t a = c[k], b = c[(k + 1) % c.size()];
+  std::size_t corners = 0;
+  for (const std::uint32_t p : members) corners += cycles[p].size();
+  dir.reserve(corners);
+  for (std::uint32_t m = 0; m < members.size(); ++m)
+    for_each_oriented_edge(polys[members[m]], cycles[members[m]], [&](std::uint32_t a, std::uint32_t b) {
       if (a != b) dir.push_back({std::min(a, b), std::max(a, b), a < b, m});
-    }
-  }
+    });
   std::sort(dir.begin(), dir.end(), [](const DirEdge& x, const DirEdge& y) {
     return std::tie(x.lo, x.hi, x.forward, x.member) < std::tie(y.lo, y.hi, y.forward, y.member);
   });
