@@ -3,18 +3,30 @@
 #include "core/edge_windings.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <utility>
 
 #include "ember/geometry/exact_order.hpp"
 
 namespace ember::core {
 
+EdgeWindings::EdgeWindings(const std::vector<char>& closed, const Box& box, std::size_t expected_edges)
+    : operands_(closed.size()), closed_(closed), box_(box) {
+  if (expected_edges == 0) return;
+  entries_.reserve(expected_edges);
+  slots_.resize(std::bit_ceil(std::max<std::size_t>(64, 2 * expected_edges)));
+}
+
 std::size_t EdgeWindings::hash(const EdgeKey& k) {
+  // The table takes the low bits: finish with a multiply-xorshift so that
+  // they depend on every coordinate (grid points are highly structured, and
+  // linear probing suffers from clustered low bits).
   std::uint64_t h = 0x9E3779B97F4A7C15ull;
-  for (const std::int64_t v : {k.a.x, k.a.y, k.a.z, k.b.x, k.b.y, k.b.z}) {
-    h ^= static_cast<std::uint64_t>(v) + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
-  }
-  return static_cast<std::size_t>(h ^ (h >> 31));
+  for (const std::int64_t v : {k.a.x, k.a.y, k.a.z, k.b.x, k.b.y, k.b.z})
+    h = (h ^ static_cast<std::uint64_t>(v)) * 0xFF51AFD7ED558CCDull;
+  h ^= h >> 32;
+  h *= 0xC4CEB9FE1A85EC53ull;
+  return static_cast<std::size_t>(h ^ (h >> 29));
 }
 
 std::uint32_t EdgeWindings::first_entry(const EdgeKey& k) const {

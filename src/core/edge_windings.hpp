@@ -44,7 +44,10 @@ class EdgeWindings {
   /// `closed`: per operand, whether its surface is closed. An open operand's
   /// traced crossing count depends on the path (it changes around the
   /// surface's boundary), so it is never handed on.
-  EdgeWindings(const std::vector<char>& closed, const Box& box) : operands_(closed.size()), closed_(closed), box_(box) {}
+  /// `expected_edges`: about how many piece edges on input edges the leaf
+  /// will record (a sizing hint: the table and the entries are made that
+  /// large once instead of growing by doubling and re-inserting).
+  EdgeWindings(const std::vector<char>& closed, const Box& box, std::size_t expected_edges = 0);
 
   /// Starts the pieces of soup polygon `t` (not in a box face; materialized)
   /// whose gathered `related` polygons are given (soup indices).

@@ -575,7 +575,11 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
     piece.splits = t.splits;
     out.push_back(std::move(piece));
   };
-  EdgeWindings known(ctx.closed, pb.box);
+  // Each polygon records its pieces' edges on its three input edges; a
+  // leaf's pieces are about as many as its polygons. Piles (thousands of
+  // polygons) grow the table as needed.
+  constexpr std::size_t kMaxExpectedEdges = 4096;
+  EdgeWindings known(ctx.closed, pb.box, std::min(3 * pb.soup.size(), kMaxExpectedEdges));
   std::vector<char> need_front(ctx.operands), need_back(ctx.operands), all(ctx.operands, 1);
   for (const SoupPolygon& t : pb.soup) {
     const std::size_t ti = static_cast<std::size_t>(&t - pb.soup.data());

@@ -45,8 +45,9 @@ inline bool clearly_off_segment(const Vec3d& ra, const Vec3d& rb, const Vec3d& r
 /// (cells about one mean edge long, found through a hash table). Positions
 /// are copied so that a query touches only the set's own memory.
 ///
-/// Members may carry a class 0, 1 or 2; within a cell they are ordered by
-/// class, so a query can visit classes 0-1 (Part::kLow) or 1-2
+/// Members may carry a class 0, 1 or 2 (member_class[i] for members[i]);
+/// within a cell they are ordered by class, and each part keeps its own
+/// bounds, so a query can visit classes 0-1 (Part::kLow) or 1-2
 /// (Part::kHigh) alone at no extra cost (the T-junction search's "vertices
 /// of the other operand": tjunctions.cpp).
 class VertexIndex {
