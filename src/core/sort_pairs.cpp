@@ -26,15 +26,31 @@ template <typename Key>
 using Pairs = std::vector<std::pair<Key, std::uint32_t>>;
 
 /// The key bits in which some two keys differ; `values_ordered` says
-/// whether the values are non-decreasing (the fast path's condition).
+/// whether the values are non-decreasing (the fast path's condition). One
+/// parallel pass over the same fixed chunks as the sort (a serial scan of
+/// millions of pairs would be the sort's only serial part).
 template <typename Key>
 Key varying_bits(const Pairs<Key>& v, bool& values_ordered) {
+  struct Chunk {
+    Key any = 0, all = std::numeric_limits<Key>::max();
+    bool ordered = true;
+  };
+  const std::size_t n = v.size(), chunks = (n + kChunk - 1) / kChunk;
+  std::vector<Chunk> part(chunks);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    Chunk& p = part[c];
+    for (std::size_t i = c * kChunk, e = std::min(n, i + kChunk); i < e; ++i) {
+      p.any |= v[i].first;
+      p.all &= v[i].first;
+      p.ordered &= i == c * kChunk || v[i - 1].second <= v[i].second;
+    }
+  });
   Key any = 0, all = std::numeric_limits<Key>::max();
   values_ordered = true;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    any |= v[i].first;
-    all &= v[i].first;
-    values_ordered &= i == 0 || v[i - 1].second <= v[i].second;
+  for (std::size_t c = 0; c < chunks; ++c) {
+    any |= part[c].any;
+    all &= part[c].all;
+    values_ordered &= part[c].ordered && (c == 0 || v[c * kChunk - 1].second <= v[c * kChunk].second);
   }
   return any ^ all;
 }

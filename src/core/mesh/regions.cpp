@@ -65,7 +65,6 @@ struct UnionFind {
   }
 };
 
-/// Oriented cycle of piece p: reversed when the piece is emitted flipped.
 /// Calls f(a, b) for every edge of poly's cycle `ids` in the orientation it
 /// is emitted with (reversed for a flipped piece), without copying the cycle.
 template <typename F>

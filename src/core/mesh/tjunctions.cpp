@@ -183,7 +183,8 @@ Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const Out
       // Only the other operand's vertices can lie inside an edge between two
       // whole triangles of a solid operand (whole_solid_edge).
       const int o = by_operand ? whole_solid_edge(run, polys, corners, pairs, *topology) : -1;
-      const VertexIndex::Part part = o < 0 ? VertexIndex::Part::kAll : (o == 0 ? VertexIndex::Part::kLow : VertexIndex::Part::kHigh);
+      using Part = VertexIndex::Part;
+      const Part part = o < 0 ? Part::kAll : (o == 0 ? Part::kLow : Part::kHigh);
       edge_interior_vertices(support_of(polys[p]), a, b, verts, index, part, found);
       if (!found.empty()) inside[run] = found;
     }

@@ -67,7 +67,7 @@ class VertexIndex {
     }
     // Each part's own bounds (a query far from a part's members stops at once).
     for (std::size_t i = 0; i < pos_.size(); ++i) {
-      const int c = member_class.empty() ? 1 : member_class[i];
+      const std::uint32_t c = class_of(member_class, i);
       for (const Part part : {Part::kLow, Part::kHigh}) {
         if (part == Part::kLow ? c > 1 : c < 1) continue;
         Bounds& b = bounds_[static_cast<int>(part)];
@@ -84,8 +84,7 @@ class VertexIndex {
     const auto n = static_cast<std::uint32_t>(pos_.size());
     cells_.resize(n);
     // Sort key: the cell (60 bits), then the class (2 bits).
-    for (std::uint32_t i = 0; i < n; ++i)
-      cells_[i] = {key(cell_of(pos_[i])) << 2 | (member_class.empty() ? 0u : member_class[i]), i};
+    for (std::uint32_t i = 0; i < n; ++i) cells_[i] = {key(cell_of(pos_[i])) << 2 | class_of(member_class, i), i};
     sort_pairs(cells_);
     // Open-addressing table: occupied cell key -> its run in cells_.
     std::size_t runs = 0;
@@ -175,6 +174,11 @@ class VertexIndex {
       return static_cast<std::int64_t>(std::clamp((x - l) * inverse_cell_, 0.0, double{(1 << 20) - 1}));
     };
     return {c(p.x, lo_.x), c(p.y, lo_.y), c(p.z, lo_.z)};
+  }
+  /// Members without a class belong to both parts (class 1), in the cell
+  /// order and the bounds alike.
+  static std::uint32_t class_of(std::span<const std::uint8_t> member_class, std::size_t i) {
+    return member_class.empty() ? 1u : member_class[i];
   }
   static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
     return (static_cast<std::uint64_t>(c[0]) << 42) | (static_cast<std::uint64_t>(c[1]) << 21) |
