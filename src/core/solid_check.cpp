@@ -10,6 +10,7 @@
 #include <numeric>
 
 #include "core/contact_search.hpp"
+#include "core/vertex_stars.hpp"
 #include "core/weld.hpp"
 #include "ember/boolean.hpp"
 
@@ -68,6 +69,7 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
                       for (std::size_t i = r.begin(); i != r.end(); ++i)
                         tris[i] = contact_triangle(grid.corners[members[i]], grid.vertex_ids[members[i]]);
                     });
+  certify_embedded_stars(tris);  // tris holds all of the operand's triangles, as a star must
   const ContactSearchResult contacts = find_contacts(tris, OperandReport::kMaxReportedPairs);
   tris = {};
   if (contacts.pairs > 0) return {SolidVerdict::SelfIntersecting, contacts.pairs, 0};

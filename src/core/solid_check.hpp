@@ -58,6 +58,10 @@ struct ContactTriangle {
   std::array<IntPoint, 3> p;
   std::array<std::int64_t, 3> n;
   std::array<std::uint32_t, 3> id;
+  /// Bit k: the star of corner k's vertex is certified embedded
+  /// (vertex_stars.hpp), so triangles sharing that vertex never meet
+  /// improperly. 0 (nothing certified) unless certify_embedded_stars set it.
+  std::uint8_t embedded = 0;
 };
 ContactTriangle contact_triangle(const std::array<IntPoint, 3>& p, const std::array<std::uint32_t, 3>& ids);
 

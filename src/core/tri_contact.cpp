@@ -150,7 +150,7 @@ bool wedges_meet(const IntPoint& v, const IntPoint& a1, const IntPoint& a2, cons
 }  // namespace
 
 ContactTriangle contact_triangle(const std::array<IntPoint, 3>& p, const std::array<std::uint32_t, 3>& ids) {
-  return {p, grid_normal(p[0], p[1], p[2]), ids};
+  return {p, grid_normal(p[0], p[1], p[2]), ids, 0};
 }
 
 bool triangles_meet_improperly(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b) {
@@ -176,6 +176,10 @@ bool triangles_meet_improperly(const ContactTriangle& ta, const ContactTriangle&
         ib = j;
       }
   if (shared >= 3) return true;  // the same triangle twice (either orientation)
+  // Two triangles of a certified star meet only in its vertex and their
+  // common edge (vertex_stars.hpp).
+  for (int i = 0; i < 3; ++i)
+    if (a_shared[i] && (ta.embedded >> i & 1)) return false;
   const auto side_of_b = [&](const IntPoint& p) { return side(tb, p); };
   const auto side_of_a = [&](const IntPoint& p) { return side(ta, p); };
   if (shared == 2) {

@@ -6,39 +6,17 @@
 
 #include <tbb/task_arena.h>
 
-#include <map>
 #include <random>
-#include <tuple>
 
 #include "core/contact_search.hpp"
 #include "core/solid_check.hpp"
+#include "contact_test_util.hpp"
 #include "core_test_util.hpp"
 
 namespace ember::test {
 namespace {
 
-using Tri = std::array<IntPoint, 3>;
 using core::ContactTriangle;
-
-/// Contact triangles with ids equal iff positions equal (as the set-up's weld gives).
-std::vector<ContactTriangle> with_ids(const std::vector<Tri>& tris) {
-  std::map<std::tuple<std::int64_t, std::int64_t, std::int64_t>, std::uint32_t> ids;
-  std::vector<ContactTriangle> out;
-  for (const Tri& t : tris) {
-    std::array<std::uint32_t, 3> id{};
-    for (int k = 0; k < 3; ++k)
-      id[k] = ids.try_emplace({t[k].x, t[k].y, t[k].z}, static_cast<std::uint32_t>(ids.size())).first->second;
-    out.push_back(core::contact_triangle(t, id));
-  }
-  return out;
-}
-
-std::size_t all_pairs_count(const std::vector<ContactTriangle>& tris) {
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < tris.size(); ++i)
-    for (std::size_t j = i + 1; j < tris.size(); ++j) n += core::triangles_meet_improperly(tris[i], tris[j]);
-  return n;
-}
 
 bool degenerate(const Tri& t) {
   const std::array<std::int64_t, 3> n = grid_normal(t[0], t[1], t[2]);
