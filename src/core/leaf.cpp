@@ -7,96 +7,18 @@
 #include <numeric>
 #include <span>
 
-#include "core/chords.hpp"
 #include "core/edge_windings.hpp"
 #include "core/frame_boxes.hpp"
+#include "core/pieces.hpp"
 #include "core/solve.hpp"
 #include "core/trace.hpp"
-#include "ember/numbers/divide.hpp"
 #include "ember/error.hpp"
 
 namespace ember::core {
 
 namespace {
 
-/// A convex piece of a polygon (a leaf of the paper's local BSP).
-struct Piece {
-  Polygon poly;
-};
-
 bool boxes_overlap(const SoupPolygon& a, const SoupPolygon& b) { return !box_disjoint(a, b.lo, b.hi); }
-
-/// True if no vertex of `poly` is strictly on the negative side of `plane`.
-bool all_nonnegative(const Polygon& poly, const Plane& plane) {
-  for (const Point& v : poly.vertices)
-    if (classify(v, plane) < 0) return false;
-  return true;
-}
-
-/// Coplanar convex polygons overlap with positive area iff no edge of either
-/// weakly separates them (separating-axis theorem in the common plane).
-bool coplanar_overlap(const Polygon& a, const Polygon& b) {
-  for (const Plane& e : b.edges)
-    if (all_nonnegative(a, e)) return false;
-  for (const Plane& e : a.edges)
-    if (all_nonnegative(b, e)) return false;
-  return true;
-}
-
-/// Case C4 for a coplanar polygon with a higher id: cut the piece along the
-/// edges of `other`; parts outside become new pieces.
-void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& other, Polygon& neg, Polygon& pos) {
-  for (const Plane& e : other.edges) {
-    if (clip(pieces[i].poly, e, neg, pos) != ClipSide::Both) continue;
-    pieces.push_back({std::move(pos)});
-    std::swap(pieces[i].poly, neg);  // the old piece's buffers serve the next clip
-  }
-}
-
-/// Case C3: split the piece by the other polygon's plane if their
-/// intersection segment crosses the piece's interior with positive length.
-/// `other_signs` are the other polygon's vertices classified against the
-/// piece's plane.
-void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& support, const Polygon& other,
-                       const std::vector<std::int8_t>& other_signs, std::vector<std::int8_t>& signs,
-                       std::vector<Plane>& cons, Polygon& neg, Polygon& pos) {
-  const Polygon& poly = pieces[i].poly;
-  bool below = false, above = false;
-  signs.resize(poly.vertices.size());
-  for (std::size_t v = 0; v < poly.vertices.size(); ++v) {
-    const int s = classify(poly.vertices[v], other.support);
-    signs[v] = static_cast<std::int8_t>(s);
-    below |= s < 0;
-    above |= s > 0;
-  }
-  if (!(below && above)) return;
-  const ChordOverlap filtered = filter_chords(poly, support, signs, other, other.support, other_signs);
-  if (filtered == ChordOverlap::kNo) return;
-  if (filtered == ChordOverlap::kUnsure) {
-    cons.clear();
-    chord_constraints(poly, signs, cons);
-    chord_constraints(other, other_signs, cons);
-    if (!line_region_has_length(support, other.support, cons)) return;
-  }
-  if (clip(poly, signs, other.support, neg, pos) != ClipSide::Both) return;
-  std::swap(pieces[i].poly, neg);  // the old piece's buffers serve the next clip
-  pieces.push_back({std::move(pos)});
-}
-
-/// Classifies o's vertices against a plane; false if all lie strictly on
-/// one side (o cannot meet the plane).
-bool touches_plane(const Polygon& o, const Plane& plane, const PlaneApprox& approx, std::vector<std::int8_t>& signs) {
-  bool neg = false, pos = false, zero = false;
-  signs.resize(o.vertices.size());
-  for (std::size_t v = 0; v < o.vertices.size(); ++v) {
-    const int s = classify(o.vertices[v], plane, approx);
-    signs[v] = static_cast<std::int8_t>(s);
-    zero |= s == 0;
-    neg |= s < 0;
-    pos |= s > 0;
-  }
-  return zero || (neg && pos);
-}
 
 /// Buffers reused across the polygons of a leaf (allocation-free inner loops).
 struct LeafScratch {
@@ -306,23 +228,8 @@ void refine(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, boo
 /// the proof classifies in the root soup.)
 bool trace_onto(const Soup& soup, const SoupPolygon& t, const Plane& S, const Dyadic& start, int k,
                 const AxisPoint& x, Wnv& w, Wnv& delta, int& side, std::uint32_t skip, const SoupApprox* flat) {
-  side = classify(to_point(start), S);
-  if (side == 0) return false;
-  const Plane pa = dyadic_axis_plane(start, k);
-  const int dir = classify(x, pa);  // sign of x_k - start_k
-  if (dir == 0) return false;
-  const int i = (k + 1) % 3, j = (k + 2) % 3;
-  const Plane l0 = dyadic_axis_plane(start, i), l1 = dyadic_axis_plane(start, j);
-  const AxisLine line = axis_line(start, k);
-  const Plane r0 = dir > 0 ? -pa : pa;
-  const Plane r1 = side > 0 ? -S : S;
-
-  const auto xa = approx(x);
-  AxisSegment seg{line, l0, l1, r0, r1, dir, {}, {}, line_point_approx(line)};
-  for (int a = 0; a < 3; ++a) {
-    seg.lo[a] = std::min(approx_coord(start, a), xa[a]) - 1e-6;
-    seg.hi[a] = std::max(approx_coord(start, a), xa[a]) + 1e-6;
-  }
+  AxisSegment seg;
+  if (!onto_segment(S, start, k, x, seg, side)) return false;
   delta.assign(w.size(), 0);
   delta[t.operand] += 1;
   Polygon scratch;  // for unbuilt triangles (the proof traces in the root soup)
@@ -334,36 +241,14 @@ bool trace_onto(const Soup& soup, const SoupPolygon& t, const Plane& S, const Dy
       const SoupPolygon& p = polys[i];
       if (p.id == t.id || p.operand == skip || box_disjoint(p, seg.lo, seg.hi)) continue;
       // A clear miss of the segment's line misses x too (x is on the line), so
-      // it decides both cases below before the exact coplanarity test.
+      // it decides both cases of meet_onto before its exact coplanarity test.
       if (clearly_misses(i, p)) continue;
-      const Polygon& poly = built_polygon(p, scratch);
-      if (coplanar(poly.support, S)) {
-        // Meets the segment only at x (the segment is transverse to S).
-        const int loc = locate(poly, x);
-        if (loc == 0) return false;
-        if (loc < 0) delta[p.operand] += same_orientation(poly.support, S) ? 1 : -1;
-        continue;
-      }
-      if (!add_crossing(seg, poly, p.operand, w)) return false;
+      if (!meet_onto(seg, built_polygon(p, scratch), p.operand, S, x, w, delta)) return false;
     }
     return true;
   };
   if (flat) return run([&](std::size_t i, const SoupPolygon&) { return line_clearly_misses(seg.line, seg.uv, *flat, i); });
   return run([&](std::size_t, const SoupPolygon& p) { return line_clearly_misses(seg.line, seg.uv, p); });
-}
-
-/// Deterministic pseudo-random weights for alternative interior points.
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
-/// Where the axis-k line through the dyadic target (u, v) meets t's plane,
-/// if that point lies strictly inside the piece f.
-bool interior_point(const Polygon& f, const Dyadic& target, int k, AxisPoint& x) {
-  return meet(axis_line(target, k), f.support, x) && locate(f, x) < 0;  // a piece of t has t's plane
 }
 
 /// Traces from the leaf's reference point to the piece through the dyadic
@@ -398,66 +283,18 @@ bool classify_through(const Subproblem& pb, const SoupPolygon& t, const Plane& S
   return true;
 }
 
-/// Classifies one enabled piece of t. Interior guesses come from double
-/// approximations first (fast, fine for all but slivers), then from exact
-/// centroids of vertex triples computed by long division, which also find
-/// slivers far thinner than a double can resolve at these coordinates.
+/// Classifies one enabled piece of t through the targets of
+/// for_each_interior_target (pieces.hpp), paths from the leaf's reference
+/// point in the variant's axis order.
 bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f, bool solid, std::uint64_t seed,
                     Wnv& w_front, Wnv& w_back, LeafScratch& scratch) {
   const Plane& S = f.support;  // t's plane (t may be unbuilt: the proof's root soup)
   const int k = dominant_axis(S);
-  const int i = (k + 1) % 3, j = (k + 2) % 3;
-  Wnv& w = scratch.w;
-  Wnv& delta = scratch.delta;
   const SoupApprox* flat = scratch.approx.verts.empty() ? nullptr : &scratch.approx;
-  for (int attempt = 0; attempt < 24; ++attempt) {
-    // Interior guess: the centroid first, then random convex combinations.
-    double ci = 0, cj = 0, total = 0;
-    for (std::size_t v = 0; v < f.vertices.size(); ++v) {
-      const double weight =
-          attempt < 2 ? 1.0 : 0.05 + static_cast<double>(mix(seed * 131 + attempt * 17 + v) >> 11) * 0x1p-53;
-      ci += weight * approx(f.vertices[v])[i];
-      cj += weight * approx(f.vertices[v])[j];
-      total += weight;
-    }
-    ci /= total;
-    cj /= total;
-    // Snap to the coarsest dyadic grid whose point still lies strictly inside.
-    for (int s = 7 + attempt / 4; s <= kMaxDyadicShift; ++s) {
-      Dyadic target = with_shift(pb.ref, std::max(s, pb.ref.shift));
-      const double scale = static_cast<double>(std::int64_t{1} << target.shift);  // exact power of two
-      target.num[i] = static_cast<__int128>(std::nearbyint(ci * scale));
-      target.num[j] = static_cast<__int128>(std::nearbyint(cj * scale));
-      AxisPoint x;
-      if (!interior_point(f, target, k, x)) continue;
-      if (classify_through(pb, t, S, target, k, x, attempt % 2 == 0, solid, w, delta, w_front, w_back, flat)) return true;
-      break;  // inside but the path is degenerate: next guess
-    }
-  }
-  // Exact centroids of vertex triples (strictly inside a convex polygon).
-  const std::size_t n = f.vertices.size();
-  auto coord = [](const Point& p, int a) -> const PointXYZ& { return a == 0 ? p.x : (a == 1 ? p.y : p.z); };
-  for (std::size_t a = 0; a < n; ++a) {
-    const std::size_t tri[3] = {a, (a + 1) % n, (a + 2) % n};  // never collinear: the piece is strictly convex
-    for (int s = 7; s <= kMaxDyadicShift; s += 3) {  // 7, 10, ..., 52
-      Dyadic target = with_shift(pb.ref, std::max(s, pb.ref.shift));
-      const int sh = target.shift;
-      for (const int axis : {i, j}) {
-        // sum of floor(x_m * 2^(sh+2) / w_m) ~ 12 * centroid * 2^sh; |x/w| <= 2^26,
-        // so each term is below 2^(26+54) and the sum below 2^82.
-        __int128 sum = 0;
-        for (const std::size_t m : tri)
-          sum += floor_scaled_ratio(coord(f.vertices[m], axis), f.vertices[m].w, sh + 2);
-        const __int128 q = sum >= 0 ? (sum + 6) / 12 : -((-sum + 6) / 12);
-        target.num[axis] = q;
-      }
-      AxisPoint x;
-      if (!interior_point(f, target, k, x)) continue;
-      for (const bool i_first : {true, false})
-        if (classify_through(pb, t, S, target, k, x, i_first, solid, w, delta, w_front, w_back, flat)) return true;
-    }
-  }
-  return false;
+  return for_each_interior_target(f, pb.ref, seed, [&](const Dyadic& target, const AxisPoint& x, int variant) {
+    return classify_through(pb, t, S, target, k, x, variant == 0, solid, scratch.w, scratch.delta, w_front, w_back,
+                            flat);
+  });
 }
 
 }  // namespace
