@@ -1,0 +1,104 @@
+#pragma once
+// A bounding-volume hierarchy over grid triangles: the triangles in Morton
+// order of their box centres, kLeaf to a leaf of an implicit complete binary
+// tree (heap order, built bottom-up in parallel). Every triangle sits in
+// exactly one leaf, so a traversal meets every pair of overlapping boxes
+// exactly once. Used by the solid proof's self-contact search
+// (contact_search.hpp) and by the solid path's broad phase and traces
+// (solid_path.hpp).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "ember/geometry/plane.hpp"
+
+namespace ember::core {
+
+// Grid coordinates satisfy |x| <= 2^25 (kCoordLimit): boxes fit int32.
+static_assert(kCoordLimit <= (std::int64_t{1} << 25), "int32 boxes and the Morton code assume |x| <= 2^25");
+
+/// A closed integer box; default-constructed empty (lo > hi), meeting nothing.
+struct Box32 {
+  std::array<std::int32_t, 3> lo{std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max(),
+                                 std::numeric_limits<std::int32_t>::max()};
+  std::array<std::int32_t, 3> hi{std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::min(),
+                                 std::numeric_limits<std::int32_t>::min()};
+
+  void add(const Box32& b) {
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], b.lo[a]);
+      hi[a] = std::max(hi[a], b.hi[a]);
+    }
+  }
+};
+
+/// Closed boxes meet (touching counts: triangles that only touch must be tested).
+inline bool overlap(const Box32& a, const Box32& b) {
+  return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] &&
+         a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
+}
+
+Box32 box_of(const std::array<IntPoint, 3>& t);
+
+/// The smallest integer box containing the double box [lo, hi] (clamped to
+/// the int32 range), for queries with a conservative double box.
+Box32 enclosing_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi);
+
+class TriangleTree {
+ public:
+  /// Triangles per leaf: small enough that a leaf's box stays tight, large
+  /// enough that the tree costs little next to the triangles (2 nodes each).
+  static constexpr std::size_t kLeaf = 8;
+
+  TriangleTree() = default;
+  /// The tree over triangles 0 .. boxes.size() - 1 with these boxes.
+  /// Parallel (oneTBB); the result does not depend on the thread count.
+  explicit TriangleTree(std::span<const Box32> boxes);
+
+  std::size_t size() const { return item_.size(); }
+  bool empty() const { return item_.empty(); }
+  /// The triangle in Morton slot `slot`, and its box.
+  std::uint32_t item(std::size_t slot) const { return item_[slot]; }
+  const Box32& box(std::size_t slot) const { return box_[slot]; }
+  /// Node n's box (heap order: children 2n + 1, 2n + 2; root 0).
+  const Box32& node(std::size_t n) const { return node_[n]; }
+  int depth() const { return depth_; }
+  /// The node of leaf k is first_leaf() + k; it holds slots leaf_slots(k).
+  std::size_t first_leaf() const { return leaves_ - 1; }
+  std::pair<std::size_t, std::size_t> leaf_slots(std::size_t leaf_node) const {
+    const std::size_t b = (leaf_node - first_leaf()) * kLeaf;
+    return {b, std::min(size(), b + kLeaf)};
+  }
+
+  /// Calls f(item) for every triangle whose box meets `query`.
+  template <typename F>
+  void for_each_overlapping(const Box32& query, F&& f) const {
+    if (!empty()) visit(0, 0, query, f);
+  }
+
+ private:
+  template <typename F>
+  void visit(std::size_t n, int depth, const Box32& query, F& f) const {
+    if (!overlap(node_[n], query)) return;
+    if (depth == depth_) {
+      const auto [b, e] = leaf_slots(n);
+      for (std::size_t s = b; s < e; ++s)
+        if (overlap(box_[s], query)) f(item_[s]);
+      return;
+    }
+    visit(2 * n + 1, depth + 1, query, f);
+    visit(2 * n + 2, depth + 1, query, f);
+  }
+
+  std::vector<std::uint32_t> item_;  ///< triangles in Morton order
+  std::vector<Box32> box_;           ///< their boxes, same order
+  std::vector<Box32> node_;          ///< the tree's boxes, heap order
+  std::size_t leaves_ = 1;
+  int depth_ = 0;
+};
+
+}  // namespace ember::core
