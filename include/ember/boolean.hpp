@@ -69,6 +69,12 @@ struct BooleanOptions {
   /// Costs a fraction of the Boolean it speeds up; turn off only for inputs
   /// known to fail it.
   bool detect_solid = true;
+  /// When every operand is solid (promised or proven), solve without the kd
+  /// subdivision: only triangles that another operand's triangles come near
+  /// are cut and traced, the others are classified by connected components
+  /// (docs/core.md, "Solid path"). The result is the same surface. false
+  /// forces the subdivision (for comparisons).
+  bool solid_path = true;
   /// Output form. Triangles (default): an indexed triangle mesh, watertight
   /// wherever the exact result is closed (exact points welded, T-junctions
   /// resolved, coplanar pieces merged and re-triangulated exactly).
@@ -118,6 +124,8 @@ struct BooleanStats {
   /// Input triangles the subdivision had cut into pieces that all reached the
   /// output uncut, passed on whole instead of as pieces.
   std::size_t merged_triangles = 0;
+  /// The solid path solved it (BooleanOptions::solid_path): every operand solid.
+  bool solid_path = false;
   std::size_t output_vertices = 0;
   /// Mesh stage (Output::Triangles): vertices inserted into edges they lay
   /// on, boundary vertices removed as merely collinear, merged regions, and

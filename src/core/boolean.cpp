@@ -22,6 +22,7 @@
 #include "core/mesh/mesh_output.hpp"
 #include "core/solve.hpp"
 #include "core/solid_check.hpp"
+#include "core/solid_path.hpp"
 #include "core/whole_triangles.hpp"
 #include "ember/core/quantize.hpp"
 #include "ember/error.hpp"
@@ -154,7 +155,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     result.stats.operands.resize(operands.size());
     core::audit_quantization(operands, gi, q, result.stats.operands, result.warnings);
     edges = core::match_edges(gi);
-    in = core::build_soup(gi, edges.manifold);
+    in = core::build_soup(gi, edges);
   });
   for (const OperandReport& r : result.stats.operands) {
     result.stats.collapsed_triangles += r.collapsed_triangles;
@@ -177,6 +178,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   }
   gi = {};
   edges.manifold = {};
+  edges.partner = {};
   const std::vector<std::size_t>& open = edges.open;
   for (std::size_t o = 0; o < operands.size(); ++o) {
     result.stats.operands[o].open_edges = open[o];
@@ -243,6 +245,17 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     result.stats.proof_ms = ms_between(setup_done, proved);
     report(options, "solve", 0.2);
     arena.execute([&] {
+      // All operands solid: the solid path (solid_path.hpp) needs no
+      // subdivision. It declines only where every trace it tried met
+      // something degenerately; the subdivision then solves as always.
+      const bool all_solid = std::all_of(ctx.solid.begin(), ctx.solid.end(), [](char s) { return s != 0; });
+      if (all_solid && options.solid_path) {
+        if (std::optional<std::vector<core::OutputPolygon>> direct = core::solve_solid(root.soup, grid, root.box, ctx)) {
+          polys = std::move(*direct);
+          result.stats.solid_path = true;
+          return;
+        }
+      }
       core::SolveOutput solved = core::solve(std::move(root), ctx);
       polys = std::move(solved.polys);
       result.stats.merged_triangles = core::merge_whole_triangles(polys);

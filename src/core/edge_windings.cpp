@@ -140,14 +140,19 @@ bool EdgeWindings::usable(const Entry& e, int k, const Point& from, const Point&
     for (const std::uint32_t x : edge.blockers)
       if (x != e.source && !on_inner_side((*soup_)[x], s.poly->support, source_edge)) return false;
   }
-  // Positive overlap along the line: [e.to, e.from] against [from, to] in the
-  // direction from -> to, along an axis in which the line's end points differ.
+  return share_a_stretch(a, b, from, to, e.from, e.to);
+}
+
+bool share_a_stretch(const IntPoint& a, const IntPoint& b, const Point& from, const Point& to, const Point& n_from,
+                     const Point& n_to) {
+  // Positive overlap along the line: [n_to, n_from] against [from, to] in the
+  // direction a -> b, along an axis in which the line's end points differ.
   const std::array<std::int64_t, 3> d{b.x - a.x, b.y - a.y, b.z - a.z};
   int axis = 0;
   while (d[axis] == 0) ++axis;  // a != b
   const int dir = d[axis] > 0 ? 1 : -1;
   const auto before = [&](const Point& p, const Point& q) { return compare_coord(p, q, axis) * dir < 0; };
-  return before(e.to, to) && before(from, e.from);
+  return before(n_to, to) && before(from, n_from);
 }
 
 bool EdgeWindings::find(const Polygon& f, std::span<const char> need_front, std::span<const char> need_back,

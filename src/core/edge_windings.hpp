@@ -39,6 +39,12 @@
 
 namespace ember::core {
 
+/// Whether a piece edge from -> to and a neighbour's piece edge n_from ->
+/// n_to, both on the input edge a -> b's line, the neighbour's running the
+/// other way (b -> a), share a stretch of positive length. Exact.
+bool share_a_stretch(const IntPoint& a, const IntPoint& b, const Point& from, const Point& to, const Point& n_from,
+                     const Point& n_to);
+
 class EdgeWindings {
  public:
   /// `closed`: per operand, whether its surface is closed. An open operand's

@@ -76,6 +76,7 @@ EdgeMatching match_edges(const GridInput& gi) {
   EdgeMatching m;
   m.open.assign(operands, 0);
   m.manifold.assign(gi.vertex_ids.size(), 0);
+  m.partner.assign(gi.vertex_ids.size(), {kNoNeighbor, kNoNeighbor, kNoNeighbor});
   tbb::parallel_for(std::size_t{0}, operands, [&](std::size_t o) {
     const std::size_t begin = gi.operand_begin[o];
     WeldedTriangles welded;
@@ -87,13 +88,17 @@ EdgeMatching match_edges(const GridInput& gi) {
       for (const EdgeUse& u : uses) balance += u.forward ? 1 : -1;
       m.open[o] += balance != 0;
       if (uses.size() != 2 || uses[0].forward == uses[1].forward) return;
-      for (const EdgeUse& u : uses) m.manifold[begin + u.tri] |= static_cast<std::uint8_t>(1u << u.edge);
+      for (int i = 0; i < 2; ++i) {
+        const EdgeUse& u = uses[i];
+        m.manifold[begin + u.tri] |= static_cast<std::uint8_t>(1u << u.edge);
+        m.partner[begin + u.tri][u.edge] = static_cast<std::uint32_t>(begin + uses[1 - i].tri);
+      }
     });
   });
   return m;
 }
 
-InputSoup build_soup(const GridInput& gi, std::span<const std::uint8_t> manifold) {
+InputSoup build_soup(const GridInput& gi, const EdgeMatching& edges) {
   const std::size_t n = gi.triangles.size();
   // Pass 1: which triangles have area (the exact grid normal is non-zero;
   // make_triangle decides the same).
@@ -125,6 +130,7 @@ InputSoup build_soup(const GridInput& gi, std::span<const std::uint8_t> manifold
   in.grid.corners.resize(kept);
   in.grid.vertex_ids.resize(kept);
   in.grid.manifold_edges.resize(kept);
+  in.grid.neighbors.resize(kept);
   // Pass 2: triangle i (kept when id[i + 1] > id[i]) becomes polygon id[i].
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
@@ -137,7 +143,12 @@ InputSoup build_soup(const GridInput& gi, std::span<const std::uint8_t> manifold
       in.soup[k] = unbuilt_triangle(in.grid.corners[k], k, t.operand);
       in.sources[k] = {t.operand, t.face};
       in.grid.vertex_ids[k] = gi.vertex_ids[i];
-      in.grid.manifold_edges[k] = manifold[i];
+      in.grid.manifold_edges[k] = edges.manifold[i];
+      for (int e = 0; e < 3; ++e) {
+        // A partner the grid made degenerate is no polygon: no neighbour.
+        const std::uint32_t q = edges.partner[i][e];
+        in.grid.neighbors[k][e] = q != kNoNeighbor && id[q + 1] != id[q] ? id[q] : kNoNeighbor;
+      }
     }
   });
   return in;

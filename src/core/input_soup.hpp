@@ -29,6 +29,9 @@ struct EdgeMatching {
   /// the opposite direction (a manifold edge; the mesh stage's T-junction
   /// search relies on it, mesh_output.hpp).
   std::vector<std::uint8_t> manifold;
+  /// Per triangle (GridInput order), per edge k with its manifold bit set:
+  /// the other triangle using it (GridInput index); kNoNeighbor otherwise.
+  std::vector<std::array<std::uint32_t, 3>> partner;
 };
 EdgeMatching match_edges(const GridInput& gi);
 
@@ -37,14 +40,14 @@ EdgeMatching match_edges(const GridInput& gi);
 /// grid.corners by id (the soup's unbuilt triangles point into it, so it must
 /// outlive the soup and the solve's output; the solid proof and
 /// merge_whole_triangles read it too), grid.vertex_ids by id (the solid
-/// proof's edge matching, the mesh stage's weld) and grid.manifold_edges by
-/// id (from `manifold`, which is EdgeMatching's, in GridInput order).
+/// proof's edge matching, the mesh stage's weld), grid.manifold_edges and
+/// grid.neighbors by id (from `edges`, in GridInput order).
 struct InputSoup {
   Soup soup;
   std::vector<Provenance> sources;
   GridTriangles grid;
   std::size_t dropped_degenerate = 0;
 };
-InputSoup build_soup(const GridInput& gi, std::span<const std::uint8_t> manifold);
+InputSoup build_soup(const GridInput& gi, const EdgeMatching& edges);
 
 }  // namespace ember::core

@@ -29,6 +29,8 @@ enum class SolidVerdict {
   Unclassified,       ///< no valid trace path (not decided)
 };
 
+inline constexpr std::uint32_t kNoNeighbor = UINT32_MAX;
+
 /// The grid triangles behind the soup's polygons, indexed by polygon id.
 struct GridTriangles {
   std::vector<std::array<IntPoint, 3>> corners;
@@ -36,6 +38,9 @@ struct GridTriangles {
   std::vector<std::array<std::uint32_t, 3>> vertex_ids;
   /// Bit k: edge k is a manifold edge of its operand (EdgeMatching::manifold).
   std::vector<std::uint8_t> manifold_edges;
+  /// Across manifold edge k: the other triangle's id (kNoNeighbor: none, or
+  /// the edge is not manifold, or the other triangle is degenerate).
+  std::vector<std::array<std::uint32_t, 3>> neighbors;
 };
 
 /// The verdict and, for the user, how much evidence was found against it.
@@ -71,5 +76,8 @@ bool triangles_meet_improperly(const ContactTriangle& a, const ContactTriangle& 
 /// The same for bare triangles (vertices are shared when their positions are
 /// equal); for tests.
 bool triangles_meet_improperly(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b);
+/// The closed triangles have a common point, any (shared vertices and
+/// touching included): the contact test of triangles of different operands.
+bool triangles_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b);
 
 }  // namespace ember::core

@@ -163,6 +163,12 @@ bool triangles_meet_improperly(const std::array<IntPoint, 3>& a, const std::arra
   return triangles_meet_improperly(contact_triangle(a, {0, 1, 2}), contact_triangle(b, ib));
 }
 
+bool triangles_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b) {
+  // With no corner counted as shared, every common point is improper: the
+  // closed-set tests below decide (equal positions included).
+  return triangles_meet_improperly(contact_triangle(a, {0, 1, 2}), contact_triangle(b, {3, 4, 5}));
+}
+
 bool triangles_meet_improperly(const ContactTriangle& ta, const ContactTriangle& tb) {
   const std::array<IntPoint, 3>&a = ta.p, &b = tb.p;
   int shared = 0, ia = -1, ib = -1;  // a[ia] == b[ib] when exactly one vertex is shared

@@ -58,6 +58,18 @@ inline BooleanResult run_checked(std::span<const Mesh> ops, Operation op, const 
   }
   EXPECT_EQ(r.stats.output_polygons, r.mesh.face_count());
   expect_watertight_if_closed(ops, opt, r);
+  // All operands solid: the solid path solved it; the subdivision must give
+  // the same surface (its coplanar regions may be triangulated otherwise).
+  if (r.stats.solid_path) {
+    BooleanOptions subdivided = opt;
+    subdivided.solid_path = false;
+    const BooleanResult s = boolean(ops, op, subdivided);
+    EXPECT_FALSE(s.stats.solid_path);
+    EXPECT_TRUE(close_rel(volume(r.mesh), volume(s.mesh), 1e-9, 1e-12))
+        << "the solid path changed the volume: " << volume(r.mesh) << " vs subdivided " << volume(s.mesh);
+    EXPECT_TRUE(close_rel(surface_area(r.mesh), surface_area(s.mesh), 1e-9, 1e-12))
+        << "the solid path changed the area: " << surface_area(r.mesh) << " vs subdivided " << surface_area(s.mesh);
+  }
   // Operands proven solid take the shortcuts; the general path must agree.
   if (opt.detect_solid && r.stats.solid_operands > 0) {
     BooleanOptions general = opt;

@@ -37,18 +37,28 @@ TEST(EarlyOut, TrianglesTheSubdivisionCutComeBackWhole) {
   // subdivision still cuts the triangles its planes cross; every piece
   // reaches the output uncut, so each such triangle is emitted whole again
   // (even as raw polygons, where nothing else would join the pieces).
+  // (The solid path has no subdivision: forced here. The solid path gives
+  // the same on its own: no triangle is touched.)
   const std::vector<Mesh> ops =
       snapped({tessellated_box({-1, -1, -1}, {1, 1, 1}, 12), icosphere({0.1, -0.05, 0.02}, 0.5, 3)});
   BooleanOptions polygons;
   polygons.output = BooleanOptions::Output::Polygons;
+  polygons.solid_path = false;
   const BooleanResult uni = run_checked(ops, Op::Union, polygons);
   EXPECT_GT(uni.stats.merged_triangles, 0u) << "the subdivision should have cut some box triangles";
   EXPECT_EQ(uni.mesh.face_count(), ops[0].face_count());
   const BooleanResult inter = run_checked(ops, Op::Intersection, polygons);
   EXPECT_EQ(inter.mesh.face_count(), ops[1].face_count());
-  const BooleanResult mesh = run_checked(ops, Op::Union);
+  BooleanOptions subdivided;
+  subdivided.solid_path = false;
+  const BooleanResult mesh = run_checked(ops, Op::Union, subdivided);
   EXPECT_EQ(mesh.stats.merged_triangles, uni.stats.merged_triangles);
   EXPECT_TRUE(close_rel(volume(mesh.mesh), volume(ops[0]), 1e-12));
+  polygons.solid_path = true;
+  const BooleanResult direct = run_checked(ops, Op::Union, polygons);
+  EXPECT_TRUE(direct.stats.solid_path);
+  EXPECT_EQ(direct.mesh.face_count(), ops[0].face_count());
+  EXPECT_EQ(direct.stats.merged_triangles, 0u);
 }
 
 TEST(EarlyOut, PerOperandSolidFlags) {

@@ -90,7 +90,8 @@ std::vector<Q3> clip_keep(const std::vector<Q3>& poly, const std::function<mpq_c
   return out;
 }
 
-bool oracle_meet(const Tri& a, const Tri& b) {
+/// With `any`: whether the closed triangles have any common point.
+bool oracle_meet(const Tri& a, const Tri& b, bool any = false) {
   const Q3 A[3] = {q3(a[0]), q3(a[1]), q3(a[2])};
   const Q3 nA = crs(sub(A[1], A[0]), sub(A[2], A[0]));
   std::vector<Q3> set{q3(b[0]), q3(b[1]), q3(b[2])};
@@ -101,6 +102,7 @@ bool oracle_meet(const Tri& a, const Tri& b) {
     const Q3 inward = crs(nA, sub(A[(i + 1) % 3], A[i]));
     set = clip_keep(set, [&](const Q3& x) { return dt(inward, sub(x, A[i])); });
   }
+  if (any) return !set.empty();
   std::vector<Q3> shared;
   for (const IntPoint& p : a)
     for (const IntPoint& q : b)
@@ -172,6 +174,31 @@ TEST(TriangleContact, RandomUnsharedLatticePairsMatchRationalOracle) {
   // vertices, and touching at a single point in every arrangement.
   expect_random_lattice_pairs_match_oracle(0, 1, 3, 20000, true);
   expect_random_lattice_pairs_match_oracle(-2, 1, 5, 30000, true);
+}
+
+TEST(TriangleContact, AnyContactOfDifferentOperandsMatchesRationalOracle) {
+  // triangles_meet (the solid path's broad phase): any common point counts,
+  // shared positions included. Half the pairs share a vertex position.
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> c(0, 3);
+  const auto random_point = [&] { return IntPoint{c(rng), c(rng), c(rng)}; };
+  int tested = 0, met = 0, mismatches = 0;
+  while (tested < 20000) {
+    const Tri a{{random_point(), random_point(), random_point()}};
+    Tri b{{random_point(), random_point(), random_point()}};
+    if (tested % 2 == 0) b[tested % 3] = a[(tested / 2) % 3];
+    if (grid_normal(a[0], a[1], a[2]) == std::array<std::int64_t, 3>{} ||
+        grid_normal(b[0], b[1], b[2]) == std::array<std::int64_t, 3>{})
+      continue;
+    ++tested;
+    const bool m = core::triangles_meet(a, b);
+    EXPECT_EQ(m, core::triangles_meet(b, a));
+    met += m;
+    mismatches += m != oracle_meet(a, b, true);
+  }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(met, 2000);
+  EXPECT_LT(met, tested - 2000);
 }
 
 TEST(TriangleContact, RandomFullRangeTrianglesMatchRationalOracle) {

@@ -1,0 +1,454 @@
+// The solid path (solid_path.hpp): broad phase on per-operand triangle
+// trees, polygon-local BSPs of the touched triangles, classification by
+// traces from outside, untouched triangles by components.
+#include "core/solid_path.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <atomic>
+#include <deque>
+
+#include "core/pieces.hpp"
+#include "core/solid_handover.hpp"
+#include "core/sort_pairs.hpp"
+#include "core/triangle_tree.hpp"
+
+namespace ember::core {
+
+namespace {
+
+/// Per operand: its triangles' ids [begin[o], begin[o + 1]) (the soup lists
+/// operands in order) and their tree (item i is id begin[o] + i).
+struct OperandTrees {
+  std::vector<std::uint32_t> begin;
+  std::vector<TriangleTree> tree;
+};
+
+std::optional<OperandTrees> build_trees(const Soup& soup, const GridTriangles& grid, std::size_t operands) {
+  OperandTrees t;
+  t.begin.assign(operands + 1, 0);
+  for (std::size_t i = 1; i < soup.size(); ++i)
+    if (soup[i].operand < soup[i - 1].operand) return std::nullopt;  // not grouped by operand
+  for (std::size_t o = 0, i = 0; o <= operands; ++o) {
+    while (i < soup.size() && soup[i].operand < o) ++i;
+    t.begin[o] = static_cast<std::uint32_t>(i);
+  }
+  t.tree.resize(operands);
+  tbb::parallel_for(std::size_t{0}, operands, [&](std::size_t o) {
+    std::vector<Box32> boxes(t.begin[o + 1] - t.begin[o]);
+    for (std::size_t i = 0; i < boxes.size(); ++i) boxes[i] = box_of(grid.corners[t.begin[o] + i]);
+    t.tree[o] = TriangleTree(boxes);
+  });
+  return t;
+}
+
+/// The meeting pairs, both ways, grouped by triangle: partners of id are
+/// ids[begin[id] .. begin[id + 1]), ascending.
+struct Partners {
+  std::vector<std::uint32_t> begin, ids;
+  bool touched(std::uint32_t id) const { return begin[id + 1] > begin[id]; }
+  std::span<const std::uint32_t> of(std::uint32_t id) const { return {ids.data() + begin[id], begin[id + 1] - begin[id]}; }
+};
+
+using PairSink = tbb::enumerable_thread_specific<std::vector<std::pair<std::uint32_t, std::uint32_t>>>;
+
+/// Collects every pair of A x B that meets (boxes first, then exactly:
+/// triangles_meet), in subtrees a of A at depth da and b of B at depth db.
+void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32_t a_base, std::size_t a, int da,
+                   const TriangleTree& B, std::uint32_t b_base, std::size_t b, int db, PairSink& sink) {
+  if (!overlap(A.node(a), B.node(b))) return;
+  const bool a_leaf = da == A.depth(), b_leaf = db == B.depth();
+  if (a_leaf && b_leaf) {
+    const auto [ab, ae] = A.leaf_slots(a);
+    const auto [bb, be] = B.leaf_slots(b);
+    for (std::size_t i = ab; i < ae; ++i) {
+      if (!overlap(A.box(i), B.node(b))) continue;
+      const std::uint32_t ia = a_base + A.item(i);
+      for (std::size_t j = bb; j < be; ++j) {
+        const std::uint32_t ib = b_base + B.item(j);
+        if (overlap(A.box(i), B.box(j)) && triangles_meet(grid.corners[ia], grid.corners[ib]))
+          sink.local().emplace_back(ia, ib);
+      }
+    }
+    return;
+  }
+  // Descend the side with more levels below (node sizes stay alike); large
+  // subtrees as parallel tasks.
+  constexpr int kParallelLevels = 6;
+  const bool split_a = !a_leaf && (b_leaf || A.depth() - da >= B.depth() - db);
+  const auto child = [&](int c) {
+    if (split_a) {
+      meeting_pairs(grid, A, a_base, 2 * a + 1 + c, da + 1, B, b_base, b, db, sink);
+    } else {
+      meeting_pairs(grid, A, a_base, a, da, B, b_base, 2 * b + 1 + c, db + 1, sink);
+    }
+  };
+  if ((split_a ? A.depth() - da : B.depth() - db) >= kParallelLevels) {
+    tbb::parallel_invoke([&] { child(0); }, [&] { child(1); });
+  } else {
+    child(0);
+    child(1);
+  }
+}
+
+/// Broad and narrow phase: the meeting pairs of triangles of different
+/// operands. Deterministic (sorted), whatever the schedule.
+Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std::size_t n) {
+  PairSink sink;
+  const std::size_t operands = trees.tree.size();
+  for (std::size_t a = 0; a < operands; ++a)
+    for (std::size_t b = a + 1; b < operands; ++b) {
+      const TriangleTree &A = trees.tree[a], &B = trees.tree[b];
+      if (!A.empty() && !B.empty()) meeting_pairs(grid, A, trees.begin[a], 0, 0, B, trees.begin[b], 0, 0, sink);
+    }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> both;
+  for (const auto& local : sink)
+    for (const auto& [x, y] : local) {
+      both.emplace_back(x, y);
+      both.emplace_back(y, x);
+    }
+  sort_pairs(both);
+  Partners p;
+  p.begin.assign(n + 1, 0);
+  p.ids.resize(both.size());
+  for (std::size_t i = 0; i < both.size(); ++i) {
+    ++p.begin[both[i].first + 1];
+    p.ids[i] = both[i].second;
+  }
+  for (std::size_t i = 0; i < n; ++i) p.begin[i + 1] += p.begin[i];
+  return p;
+}
+
+/// Built polygons of the triangles near the ones being processed, by id:
+/// a touched triangle's partners are mostly the previous one's (triangles go
+/// in Morton order), so each is built about once per chunk. References stay
+/// valid until reset().
+class PolygonCache {
+ public:
+  explicit PolygonCache(const GridTriangles& grid) : grid_(grid) { slots_.assign(1024, kEmpty); }
+  const Polygon& get(std::uint32_t id) {
+    std::size_t h = (id * 0x9e3779b1u) & (slots_.size() - 1);
+    for (; slots_[h].first != kNone; h = (h + 1) & (slots_.size() - 1))
+      if (slots_[h].first == id) return pool_[slots_[h].second];
+    if (used_ == pool_.size()) pool_.emplace_back();
+    const std::array<IntPoint, 3>& c = grid_.corners[id];
+    assign_triangle(c[0], c[1], c[2], pool_[used_]);  // a soup triangle has area
+    slots_[h] = {id, static_cast<std::uint32_t>(used_)};
+    if (2 * ++used_ > slots_.size()) grow();
+    return pool_[used_ - 1];
+  }
+  /// Forgets everything (buffers are kept) once the cache is large.
+  void reset_if_full() {
+    if (used_ < 256) return;
+    std::fill(slots_.begin(), slots_.end(), kEmpty);
+    used_ = 0;
+  }
+
+ private:
+  static constexpr std::uint32_t kNone = UINT32_MAX;
+  static constexpr std::pair<std::uint32_t, std::uint32_t> kEmpty{kNone, 0};
+  void grow() {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> old(2 * slots_.size(), kEmpty);
+    old.swap(slots_);
+    for (const auto& e : old) {
+      if (e.first == kNone) continue;
+      std::size_t h = (e.first * 0x9e3779b1u) & (slots_.size() - 1);
+      while (slots_[h].first != kNone) h = (h + 1) & (slots_.size() - 1);
+      slots_[h] = e;
+    }
+  }
+  const GridTriangles& grid_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> slots_;
+  std::deque<Polygon> pool_;  ///< stable references
+  std::size_t used_ = 0;
+};
+
+/// Everything a classification needs.
+struct Tracer {
+  const Soup& soup;
+  const OperandTrees& trees;
+  const Box& box;
+  std::size_t operands;
+};
+
+/// Scratch of one worker.
+struct Scratch {
+  Wnv w, delta;
+  Polygon built;  ///< an unbuilt triangle met by a trace
+};
+
+/// Winding numbers just in front of and behind piece f of a triangle of
+/// solid operand `own`: traced along f's dominant axis k from outside the
+/// root box (the nearer face first) onto a point strictly inside f.
+bool classify_from_outside(const Tracer& tr, const Polygon& f, std::uint32_t own, std::uint64_t seed, Wnv& w_front,
+                           Wnv& w_back, Scratch& sc) {
+  const Plane& S = f.support;
+  const int k = dominant_axis(S);
+  Dyadic base;  // only its shift (0) matters: the start's coordinate k is set below
+  return for_each_interior_target(f, base, seed, [&](const Dyadic& target, const AxisPoint& x, int variant) {
+    const double xk = approx(x)[k];
+    const bool low_nearer = xk - static_cast<double>(tr.box.lo[k]) <= static_cast<double>(tr.box.hi[k]) - xk;
+    Dyadic start = target;
+    start.num[k] = static_cast<__int128>((low_nearer == (variant == 0)) ? tr.box.lo[k] : tr.box.hi[k]) << target.shift;
+    AxisSegment seg;
+    int side = 0;
+    if (!onto_segment(S, start, k, x, seg, side)) return false;
+    sc.w.assign(tr.operands, 0);  // outside the root box: outside everything
+    sc.delta.assign(tr.operands, 0);
+    const Box32 query = enclosing_box(seg.lo, seg.hi);
+    bool ok = true;
+    for (std::size_t o = 0; o < tr.operands && ok; ++o) {
+      if (o == own) continue;  // solid: its winding numbers at f are known
+      tr.trees.tree[o].for_each_overlapping(query, [&](std::uint32_t item) {
+        const SoupPolygon& p = tr.soup[tr.trees.begin[o] + item];
+        if (!ok || box_disjoint(p, seg.lo, seg.hi) || line_clearly_misses(seg.line, seg.uv, p)) return;
+        ok = meet_onto(seg, built_polygon(p, sc.built), p.operand, S, x, sc.w, sc.delta);
+      });
+    }
+    if (!ok) return false;
+    w_front = sc.w;
+    w_back = sc.w;
+    for (std::size_t o = 0; o < tr.operands; ++o) (side > 0 ? w_back[o] += sc.delta[o] : w_front[o] -= sc.delta[o]);
+    w_front[own] = 0;
+    w_back[own] = 1;
+    return true;
+  });
+}
+
+/// Scratch of the polygon-local BSP of one triangle.
+struct CutScratch {
+  std::span<const std::uint32_t> partners;
+  std::vector<Piece> pieces, next;
+  std::vector<std::int8_t> other_signs, signs;
+  std::vector<Plane> cons;
+  Polygon neg, pos;
+};
+
+/// t's pieces (Section 4.3 with closed operands and no box): what lower-id
+/// coplanar partners cover is cut away and left to them (Fig. 8), then every
+/// transverse partner touching t's plane cuts along its plane (C3). Higher-id
+/// coplanar partners need no cut: their edges continue into triangles of
+/// their closed operand that leave the plane, whose C3 cuts separate where
+/// their coverage changes. Returns false if a partner covered part of t.
+bool cut_triangle(const Polygon& t, std::uint32_t id, PolygonCache& cache, CutScratch& cs) {
+  cs.pieces.resize(1);
+  cs.pieces[0].poly = t;
+  bool untouched = true;
+  for (auto it = cs.partners.rbegin(); it != cs.partners.rend(); ++it) {  // nearest lower ids first
+    if (*it >= id) continue;
+    const Polygon& o = cache.get(*it);
+    if (!coplanar(t.support, o.support)) continue;
+    cs.next.clear();
+    for (Piece& p : cs.pieces) {
+      if (!coplanar_overlap(p.poly, o)) {
+        cs.next.push_back(std::move(p));
+        continue;
+      }
+      for (const Plane& e : o.edges) {  // the parts outside o stay
+        if (clip(p.poly, e, cs.neg, cs.pos) != ClipSide::Both) continue;
+        cs.next.push_back({std::move(cs.pos)});
+        std::swap(p.poly, cs.neg);
+      }
+      untouched = false;
+    }
+    std::swap(cs.pieces, cs.next);
+    if (cs.pieces.empty()) return false;
+  }
+  const PlaneApprox approx(t.support);
+  for (const std::uint32_t q : cs.partners) {
+    const Polygon& o = cache.get(q);
+    if (coplanar(t.support, o.support) || !touches_plane(o, t.support, approx, cs.other_signs)) continue;
+    const std::size_t n = cs.pieces.size();
+    for (std::size_t i = 0; i < n; ++i)
+      cut_by_transverse(cs.pieces, i, t.support, o, cs.other_signs, cs.signs, cs.cons, cs.neg, cs.pos);
+  }
+  return untouched;
+}
+
+/// The output form of t whole (unbuilt), or of one of its pieces.
+OutputPolygon output_of(const SoupPolygon& t, const Polygon* piece, bool flip) {
+  OutputPolygon out;
+  if (piece) out.vertices.assign(piece->vertices.begin(), piece->vertices.end());
+  out.corners = t.corners;
+  out.id = t.id;
+  out.operand = t.operand;
+  out.flip = flip;
+  out.whole_piece = !piece;
+  return out;
+}
+
+/// Union-find root with path halving.
+std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+/// The untouched triangles joined across manifold edges: roots (each
+/// component's smallest id, ascending) and, per untouched triangle, its
+/// component's index in `roots`.
+struct Components {
+  std::vector<std::uint32_t> roots;
+  std::vector<std::uint32_t> index;
+};
+
+Components untouched_components(const GridTriangles& grid, const std::vector<char>& touched) {
+  const auto n = static_cast<std::uint32_t>(touched.size());
+  Components c;
+  std::vector<std::uint32_t>& parent = c.index;
+  parent.resize(n);
+  for (std::uint32_t i = 0; i < n; ++i) parent[i] = i;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (touched[i]) continue;
+    for (const std::uint32_t j : grid.neighbors[i]) {
+      if (j == kNoNeighbor || touched[j]) continue;
+      const std::uint32_t ri = find(parent, i), rj = find(parent, j);
+      if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);  // the root is the smallest id
+    }
+  }
+  // A non-root's parent is a smaller id, so in ascending order every earlier
+  // entry is final: first each entry becomes its root, then each root its
+  // component's index and each other entry its root's index.
+  for (std::uint32_t i = 0; i < n; ++i) parent[i] = parent[parent[i]];
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (touched[i]) continue;
+    if (parent[i] == i) {
+      parent[i] = static_cast<std::uint32_t>(c.roots.size());
+      c.roots.push_back(i);
+    } else {
+      parent[i] = parent[parent[i]];  // the root (< i) already holds its index
+    }
+  }
+  return c;
+}
+
+/// An untouched triangle across one of t's input edges along which piece f
+/// has an edge (of positive length: f is strictly convex), or kNoNeighbor.
+/// f's edges on t's edges keep t's edge planes (clip copies them).
+std::uint32_t untouched_neighbour_along(const Polygon& f, const Polygon& t, const std::array<std::uint32_t, 3>& neighbours,
+                                        const std::vector<char>& touched) {
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t u = neighbours[k];
+    if (u == kNoNeighbor || touched[u]) continue;
+    for (const Plane& e : f.edges)
+      if (e == t.edges[k]) return u;
+  }
+  return kNoNeighbor;
+}
+
+}  // namespace
+
+std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const GridTriangles& grid, const Box& box,
+                                                      const SolveContext& ctx) {
+  const std::size_t n = soup.size(), operands = ctx.operands;
+  std::optional<OperandTrees> trees = build_trees(soup, grid, operands);
+  if (!trees) return std::nullopt;
+  // 1. Which triangles another operand's triangles meet, and which.
+  const Partners partners = find_partners(grid, *trees, n);
+  std::vector<char> touched(n);
+  for (std::uint32_t i = 0; i < n; ++i) touched[i] = partners.touched(i);
+  const Tracer tracer{soup, *trees, box, operands};
+  std::atomic<bool> failed{false};
+
+  // 2. Untouched triangles: components across manifold edges, one trace each.
+  const Components comps = untouched_components(grid, touched);
+  std::vector<int> comp_w(2 * operands * comps.roots.size());  // per component: front, then back
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, comps.roots.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
+    Scratch sc;
+    Polygon t;
+    Wnv front, back;
+    for (std::size_t k = r.begin(); k != r.end() && !failed.load(); ++k) {
+      const std::uint32_t id = comps.roots[k];
+      const std::array<IntPoint, 3>& c = grid.corners[id];
+      assign_triangle(c[0], c[1], c[2], t);
+      if (!classify_from_outside(tracer, t, soup[id].operand, std::uint64_t{id} << 20, front, back, sc)) {
+        failed = true;
+        break;
+      }
+      std::copy(front.begin(), front.end(), comp_w.begin() + static_cast<std::ptrdiff_t>(2 * operands * k));
+      std::copy(back.begin(), back.end(), comp_w.begin() + static_cast<std::ptrdiff_t>(2 * operands * k + operands));
+    }
+  });
+  if (failed) return std::nullopt;
+  const auto component_w = [&](std::uint32_t id, Wnv& front, Wnv& back) {
+    const auto at = comp_w.begin() + static_cast<std::ptrdiff_t>(2 * operands * comps.index[id]);
+    front.assign(at, at + static_cast<std::ptrdiff_t>(operands));
+    back.assign(at + static_cast<std::ptrdiff_t>(operands), at + static_cast<std::ptrdiff_t>(2 * operands));
+  };
+  const auto emitted = [&](const Wnv& front, const Wnv& back, bool& flip) {
+    const bool in_front = ctx.inside(front), in_back = ctx.inside(back);
+    flip = in_front;
+    return in_front != in_back;
+  };
+
+  // 3. Touched triangles, in Morton order per operand (partners repeat from
+  // one triangle to the next), in fixed chunks: each chunk's output is
+  // ordered, so the result does not depend on the schedule. A piece with an
+  // edge on an input edge whose other triangle is untouched takes that
+  // triangle's winding numbers (solid_path.hpp, 4: nothing else comes near
+  // that edge, so the same argument holds); the others are traced.
+  constexpr std::size_t kChunk = 256;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;  // (operand, first slot)
+  for (std::uint32_t o = 0; o < operands; ++o)
+    for (std::size_t s = 0; s < trees->tree[o].size(); s += kChunk) chunks.emplace_back(o, static_cast<std::uint32_t>(s));
+  std::vector<std::vector<OutputPolygon>> chunk_out(chunks.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    PolygonCache cache(grid);
+    CutScratch cs;
+    Scratch sc;
+    SolidHandover handover(operands);
+    Wnv front, back;
+    for (std::size_t c = r.begin(); c != r.end(); ++c) {
+      const auto [o, first] = chunks[c];
+      handover.clear();  // a chunk's result must not depend on the chunks before it
+      const TriangleTree& tree = trees->tree[o];
+      std::vector<OutputPolygon>& out = chunk_out[c];
+      for (std::size_t slot = first; slot < std::min(tree.size(), first + kChunk) && !failed.load(); ++slot) {
+        const std::uint32_t id = trees->begin[o] + tree.item(slot);
+        if (!touched[id]) continue;
+        cache.reset_if_full();
+        cs.partners = partners.of(id);
+        const Polygon& t = cache.get(id);
+        const bool whole = cut_triangle(t, id, cache, cs) && cs.pieces.size() == 1;
+        handover.begin_triangle(id, t, cs.partners, grid);
+        for (std::size_t m = 0; m < cs.pieces.size(); ++m) {
+          const Polygon& f = cs.pieces[m].poly;
+          const std::uint32_t via = untouched_neighbour_along(f, t, grid.neighbors[id], touched);
+          if (via != kNoNeighbor) {
+            component_w(via, front, back);
+            front[o] = 0;
+            back[o] = 1;
+          } else if (!handover.find(f, front, back) &&
+                     !classify_from_outside(tracer, f, o, (std::uint64_t{id} << 20) ^ (m << 10), front, back, sc)) {
+            failed = true;
+            break;
+          }
+          handover.record(f, front, back);
+          bool flip = false;
+          if (emitted(front, back, flip)) out.push_back(output_of(soup[id], whole ? nullptr : &f, flip));
+        }
+      }
+    }
+  });
+  if (failed) return std::nullopt;
+
+  // 4. The output: untouched triangles by id, then the chunks in order.
+  std::vector<char> keep(comps.roots.size());
+  Wnv front, back;
+  for (std::size_t k = 0; k < comps.roots.size(); ++k) {
+    component_w(comps.roots[k], front, back);
+    bool flip = false;
+    keep[k] = emitted(front, back, flip) ? (flip ? 2 : 1) : 0;
+  }
+  std::vector<OutputPolygon> out;
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (!touched[i] && keep[comps.index[i]]) out.push_back(output_of(soup[i], nullptr, keep[comps.index[i]] == 2));
+  for (std::vector<OutputPolygon>& c : chunk_out)
+    out.insert(out.end(), std::make_move_iterator(c.begin()), std::make_move_iterator(c.end()));
+  return out;
+}
+
+}  // namespace ember::core

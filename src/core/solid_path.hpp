@@ -1,0 +1,49 @@
+#pragma once
+// The solid path: the Boolean of operands that are all solid (proven or
+// promised: closed, outward, free of self-intersections, w in {0, 1}),
+// without the kd subdivision.
+//
+// The subdivision exists to keep every leaf small and to carry a reference
+// point with known winding numbers to it (paper Sections 4.1-4.2). With solid
+// operands most of that work is spent far from the only places where the
+// result differs from the inputs: where triangles of different operands
+// meet. Fig. 11's shortcuts, carried to their end:
+//  1. broad phase: one Morton tree per operand (triangle_tree.hpp); the pairs
+//     of triangles of different operands whose boxes meet. A triangle in no
+//     pair is *untouched*: no other operand's surface comes near it.
+//  2. a touched triangle t is cut by its partners exactly as in a leaf
+//     (pieces.hpp): lower-id coplanar partners cut away what they cover
+//     (Fig. 8), transverse ones cut along their planes where the chord has
+//     length (C3). No other polygon can cut t: every polygon meeting t is a
+//     partner (its box meets t's), and t's own operand never crosses t.
+//  3. each piece is classified by a segment trace from a point outside the
+//     root box (winding numbers 0) along t's dominant axis onto a point
+//     strictly inside the piece (Section 3.4's tweak at the end point), the
+//     other operands' triangles found through their trees. t's operand is
+//     solid: 0 in front of t, 1 behind, its triangles never traced.
+//  4. untouched triangles of one operand joined across manifold edges
+//     (GridTriangles::neighbors) share their winding numbers: near such an
+//     edge only the two triangles exist (no other operand comes near, and a
+//     solid operand's edge has no third triangle), so the regions in front
+//     of both are one region, and those behind. One trace per component.
+// Every decision is the exact predicate the leaves use; the output is the
+// same point set as the subdivision's (the pieces differ: no split-plane
+// cuts), so the mesh stage makes the same surfaces.
+#include <optional>
+#include <vector>
+
+#include "core/solid_check.hpp"
+#include "core/solve.hpp"
+
+namespace ember::core {
+
+/// The Boolean of the root soup (polygon i has id i, grid.corners[i] its
+/// corners; every operand solid in `ctx`) inside the root box `box`, whose
+/// boundary no polygon touches. The pieces on the result's surface, in a
+/// deterministic order (unbuilt whole triangles and explicit pieces; no
+/// paths). nullopt if some piece found no non-degenerate trace (the caller
+/// then solves on the subdivision instead).
+std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const GridTriangles& grid, const Box& box,
+                                                      const SolveContext& ctx);
+
+}  // namespace ember::core
