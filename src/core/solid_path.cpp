@@ -15,18 +15,12 @@
 #include "core/pieces.hpp"
 #include "core/solid_handover.hpp"
 #include "core/sort_pairs.hpp"
+#include "core/solid_trace.hpp"
 #include "core/triangle_tree.hpp"
 
 namespace ember::core {
 
 namespace {
-
-/// Per operand: its triangles' ids [begin[o], begin[o + 1]) (the soup lists
-/// operands in order) and their tree (item i is id begin[o] + i).
-struct OperandTrees {
-  std::vector<std::uint32_t> begin;
-  std::vector<TriangleTree> tree;
-};
 
 std::optional<OperandTrees> build_trees(const Soup& soup, const GridTriangles& grid, std::size_t operands) {
   OperandTrees t;
@@ -167,58 +161,6 @@ class PolygonCache {
   std::size_t used_ = 0;
 };
 
-/// Everything a classification needs.
-struct Tracer {
-  const Soup& soup;
-  const OperandTrees& trees;
-  const Box& box;
-  std::size_t operands;
-};
-
-/// Scratch of one worker.
-struct Scratch {
-  Wnv w, delta;
-  Polygon built;  ///< an unbuilt triangle met by a trace
-};
-
-/// Winding numbers just in front of and behind piece f of a triangle of
-/// solid operand `own`: traced along f's dominant axis k from outside the
-/// root box (the nearer face first) onto a point strictly inside f.
-bool classify_from_outside(const Tracer& tr, const Polygon& f, std::uint32_t own, std::uint64_t seed, Wnv& w_front,
-                           Wnv& w_back, Scratch& sc) {
-  const Plane& S = f.support;
-  const int k = dominant_axis(S);
-  Dyadic base;  // only its shift (0) matters: the start's coordinate k is set below
-  return for_each_interior_target(f, base, seed, [&](const Dyadic& target, const AxisPoint& x, int variant) {
-    const double xk = approx(x)[k];
-    const bool low_nearer = xk - static_cast<double>(tr.box.lo[k]) <= static_cast<double>(tr.box.hi[k]) - xk;
-    Dyadic start = target;
-    start.num[k] = static_cast<__int128>((low_nearer == (variant == 0)) ? tr.box.lo[k] : tr.box.hi[k]) << target.shift;
-    AxisSegment seg;
-    int side = 0;
-    if (!onto_segment(S, start, k, x, seg, side)) return false;
-    sc.w.assign(tr.operands, 0);  // outside the root box: outside everything
-    sc.delta.assign(tr.operands, 0);
-    const Box32 query = enclosing_box(seg.lo, seg.hi);
-    bool ok = true;
-    for (std::size_t o = 0; o < tr.operands && ok; ++o) {
-      if (o == own) continue;  // solid: its winding numbers at f are known
-      tr.trees.tree[o].for_each_overlapping(query, [&](std::uint32_t item) {
-        const SoupPolygon& p = tr.soup[tr.trees.begin[o] + item];
-        if (!ok || box_disjoint(p, seg.lo, seg.hi) || line_clearly_misses(seg.line, seg.uv, p)) return;
-        ok = meet_onto(seg, built_polygon(p, sc.built), p.operand, S, x, sc.w, sc.delta);
-      });
-    }
-    if (!ok) return false;
-    w_front = sc.w;
-    w_back = sc.w;
-    for (std::size_t o = 0; o < tr.operands; ++o) (side > 0 ? w_back[o] += sc.delta[o] : w_front[o] -= sc.delta[o]);
-    w_front[own] = 0;
-    w_back[own] = 1;
-    return true;
-  });
-}
-
 /// Scratch of the polygon-local BSP of one triangle.
 struct CutScratch {
   std::span<const std::uint32_t> partners;
@@ -357,7 +299,7 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const Gr
   const Components comps = untouched_components(grid, touched);
   std::vector<int> comp_w(2 * operands * comps.roots.size());  // per component: front, then back
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, comps.roots.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
-    Scratch sc;
+    TraceScratch sc;
     Polygon t;
     Wnv front, back;
     for (std::size_t k = r.begin(); k != r.end() && !failed.load(); ++k) {
@@ -398,7 +340,7 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const Gr
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
     PolygonCache cache(grid);
     CutScratch cs;
-    Scratch sc;
+    TraceScratch sc;
     SolidHandover handover(operands);
     Wnv front, back;
     for (std::size_t c = r.begin(); c != r.end(); ++c) {

@@ -45,23 +45,26 @@ bool line_region_has_length(const Plane& l0, const Plane& l1, std::span<const Pl
   return false;
 }
 
-bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int axis, Wnv& w, std::uint32_t skip,
-                        const SoupApprox* flat) {
+bool make_axis_segment(const Dyadic& a, const Dyadic& b, int axis, AxisSegment& seg) {
   const int dir = a.num[axis] < b.num[axis] ? 1 : (a.num[axis] > b.num[axis] ? -1 : 0);
-  if (dir == 0) return true;
+  if (dir == 0) return false;
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  const Plane l0 = dyadic_axis_plane(a, u), l1 = dyadic_axis_plane(a, v);
   const AxisLine line = axis_line(a, axis);
   // Segment = points of the line with r0 <= 0 and r1 <= 0.
   const Plane pa = dyadic_axis_plane(a, axis), pb = dyadic_axis_plane(b, axis);
-  const Plane r0 = dir > 0 ? -pa : pa;
-  const Plane r1 = dir > 0 ? pb : -pb;
-
-  AxisSegment seg{line, l0, l1, r0, r1, dir, {}, {}, line_point_approx(line)};
+  seg = AxisSegment{line, dyadic_axis_plane(a, u), dyadic_axis_plane(a, v), dir > 0 ? -pa : pa, dir > 0 ? pb : -pb,
+                    dir, {}, {}, line_point_approx(line)};
   for (int i = 0; i < 3; ++i) {
     seg.lo[i] = std::min(approx_coord(a, i), approx_coord(b, i));
     seg.hi[i] = std::max(approx_coord(a, i), approx_coord(b, i));
   }
+  return true;
+}
+
+bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int axis, Wnv& w, std::uint32_t skip,
+                        const SoupApprox* flat) {
+  AxisSegment seg;
+  if (!make_axis_segment(a, b, axis, seg)) return true;
   // The filters here, before the call: most polygons of a leaf miss the
   // segment's box.
   Polygon scratch;  // an unbuilt triangle that passes the filters is built here

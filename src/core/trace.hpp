@@ -28,6 +28,10 @@ struct AxisSegment {
   std::array<double, 2> uv{};        ///< line_point_approx(line), for the miss filter
 };
 
+/// The segment from dyadic a to dyadic b (same shift), which differ only in
+/// coordinate `axis`; false (seg untouched) if a = b.
+bool make_axis_segment(const Dyadic& a, const Dyadic& b, int axis, AxisSegment& seg);
+
 /// Adds polygon p's crossing of the segment to w. False when the segment
 /// meets p degenerately: at an edge or vertex, at a segment end, or touching
 /// it within p's plane. Exact on its own; callers first skip the polygons

@@ -1,0 +1,47 @@
+#pragma once
+// Classification traces of the solid path (solid_path.hpp, step 3): the
+// paper's segment traces (Sections 3.4, 4.4) with the polygons a segment can
+// meet found through the operands' triangle trees instead of a leaf's soup.
+//
+// A piece f of a triangle of solid operand `own` needs the winding numbers
+// of the other operands just in front of and behind it (own's are 0 and 1):
+// traced from outside the root box, where every winding number is 0, along
+// f's dominant axis k onto a point strictly inside f, the nearer face of the
+// box first. (Local references near the pieces, as the leaves have, were
+// tried: the three-segment paths from them crossed more triangles' boxes
+// than the one straight segment from outside.)
+#include <vector>
+
+#include "core/solve.hpp"
+#include "core/triangle_tree.hpp"
+
+namespace ember::core {
+
+/// Per operand: its triangles' ids [begin[o], begin[o + 1]) (the soup lists
+/// operands in order) and their tree (item i is id begin[o] + i).
+struct OperandTrees {
+  std::vector<std::uint32_t> begin;
+  std::vector<TriangleTree> tree;
+};
+
+/// What every trace reads.
+struct Tracer {
+  const Soup& soup;  ///< the root soup: polygon i has id i
+  const OperandTrees& trees;
+  const Box& box;  ///< the root box: no polygon touches its boundary
+  std::size_t operands;
+};
+
+/// Scratch of one worker.
+struct TraceScratch {
+  Wnv w, delta;
+  Polygon built;  ///< an unbuilt triangle met by a trace
+};
+
+/// Winding numbers just in front of and behind piece f (on its triangle's
+/// plane) of a triangle of solid operand `own`, traced from outside the root
+/// box. False if every path tried met something degenerately.
+bool classify_from_outside(const Tracer& tr, const Polygon& f, std::uint32_t own, std::uint64_t seed, Wnv& w_front,
+                           Wnv& w_back, TraceScratch& sc);
+
+}  // namespace ember::core
