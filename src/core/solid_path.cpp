@@ -385,9 +385,16 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const Gr
     bool flip = false;
     keep[k] = emitted(front, back, flip) ? (flip ? 2 : 1) : 0;
   }
+  // An untouched triangle whose neighbours are all untouched is settled
+  // (OutputPolygon::settled): no other operand comes near it or them, and
+  // its own operand meets it only in shared vertices and these edges.
   std::vector<OutputPolygon> out;
-  for (std::uint32_t i = 0; i < n; ++i)
-    if (!touched[i] && keep[comps.index[i]]) out.push_back(output_of(soup[i], nullptr, keep[comps.index[i]] == 2));
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (touched[i] || !keep[comps.index[i]]) continue;
+    out.push_back(output_of(soup[i], nullptr, keep[comps.index[i]] == 2));
+    out.back().settled = std::none_of(grid.neighbors[i].begin(), grid.neighbors[i].end(),
+                                      [&](std::uint32_t j) { return j == kNoNeighbor || touched[j]; });
+  }
   for (std::vector<OutputPolygon>& c : chunk_out)
     out.insert(out.end(), std::make_move_iterator(c.begin()), std::make_move_iterator(c.end()));
   return out;

@@ -47,6 +47,13 @@ struct OutputPolygon {
   /// The polygon is the whole subdivision piece its source triangle had in
   /// the box that emitted it (no leaf cut or trimmed it).
   bool whole_piece = false;
+  /// Nothing else in the output can touch it but along its own edges and at
+  /// its corners: an unbuilt triangle whose three edges it shares with whole
+  /// triangles of its operand that no other operand comes near (the solid
+  /// path's interior triangles, solid_path.hpp). No vertex lies inside its
+  /// edges and none of its corners inside another polygon's edge, so the
+  /// mesh stage passes it through as it is.
+  bool settled = false;
 
   static constexpr std::uint32_t kNoPath = UINT32_MAX;
 };

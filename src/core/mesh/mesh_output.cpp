@@ -131,7 +131,7 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
   const OutputVertices verts = exact_weld(polys, q, ids);
   out.stats.weld_ms = ms_since(clock);
   const VertexIndex index = index_output_vertices(polys, verts, ids);
-  const EdgePairs pairs = group_edges_by_pair(verts.corners);
+  const EdgePairs pairs = group_edges_by_pair(verts.corners, polys);
   const Cycles cycles = insert_tjunction_vertices(polys, verts, index, pairs, out.stats.tjunctions, ids);
   out.stats.tjunction_ms = ms_since(clock);
   // Whole triangles that nothing can join go straight to the output; their

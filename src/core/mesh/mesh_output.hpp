@@ -93,12 +93,15 @@ VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const Ou
 /// its polygon) grouped by undirected id pair: every edge of a pair is the
 /// same segment, so it is searched once.
 struct EdgePairs {
+  static constexpr std::uint32_t kNoRun = UINT32_MAX;
   std::vector<std::uint32_t> corner;     ///< corners sorted by (pair, corner)
   std::vector<std::uint32_t> run_begin;  ///< pair r owns corner[run_begin[r] .. run_begin[r+1])
-  std::vector<std::uint32_t> run_of;     ///< per corner: its pair
+  std::vector<std::uint32_t> run_of;     ///< per corner: its pair (kNoRun: a settled polygon's)
   std::vector<std::uint32_t> poly_of;    ///< per corner: its polygon
 };
-EdgePairs group_edges_by_pair(const Cycles& corners);
+/// With `polys`, the corners of settled polygons (OutputPolygon::settled)
+/// are left out: their edges need no search and join nothing.
+EdgePairs group_edges_by_pair(const Cycles& corners, std::span<const OutputPolygon> polys = {});
 
 /// Step 2. Per polygon (unflipped order): corners with every vertex that lies
 /// in the open interior of an edge inserted in order along it. Counts the
@@ -108,10 +111,11 @@ Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const Out
                                  const VertexIndex& index, const EdgePairs& pairs, std::size_t& inserted,
                                  const InputTopology* topology = nullptr);
 
-/// Step 2b. Per polygon, 1 if it leaves the mesh stage as it came: an
-/// unbuilt triangle (a whole input triangle) that gained no vertex in step 2
-/// and shares no edge with a piece of the same oriented plane, so that step 3
-/// would make it a region of its own and step 4 would emit it unchanged.
+/// Step 2b. Per polygon, 1 if it leaves the mesh stage as it came: a settled
+/// polygon, or an unbuilt triangle (a whole input triangle) that gained no
+/// vertex in step 2 and shares no edge with a piece of the same oriented
+/// plane, so that step 3 would make it a region of its own and step 4 would
+/// emit it unchanged.
 /// Such triangles skip steps 3 and 4. `cycles` are step 2's.
 std::vector<char> pass_through_triangles(std::span<const OutputPolygon> polys, const OutputVertices& verts,
                                          const EdgePairs& pairs, const Cycles& cycles);

@@ -60,6 +60,10 @@ std::vector<char> pass_through_triangles(std::span<const OutputPolygon> polys, c
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 512), [&](const auto& range) {
     for (std::size_t t = range.begin(); t != range.end(); ++t) {
       const OutputPolygon& tri = polys[t];
+      if (tri.settled) {
+        through[t] = 1;  // nothing can join it (OutputPolygon::settled)
+        continue;
+      }
       if (!unbuilt(tri) || cycles[t].size() != 3) continue;
       const Plane normal = oriented_normal(tri);
       const auto joins = [&](std::uint32_t q) {

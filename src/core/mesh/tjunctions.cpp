@@ -105,25 +105,32 @@ int whole_solid_edge(std::size_t run, std::span<const OutputPolygon> polys, cons
 
 }  // namespace
 
-EdgePairs group_edges_by_pair(const Cycles& corners) {
-  const std::size_t n = corners.ids.size();
+EdgePairs group_edges_by_pair(const Cycles& corners, std::span<const OutputPolygon> polys) {
+  const auto settled = [&](std::size_t p) { return !polys.empty() && polys[p].settled; };
+  // Corners of settled polygons are left out (their run_of is kNoRun): the
+  // kept ones first get their slot in `keyed` by a prefix count.
+  std::vector<std::uint32_t> slot(corners.size() + 1, 0);
+  for (std::size_t p = 0; p < corners.size(); ++p)
+    slot[p + 1] = slot[p] + (settled(p) ? 0 : static_cast<std::uint32_t>(corners[p].size()));
+  const std::size_t n = slot.back();
   EdgePairs g;
-  g.poly_of.resize(n);
+  g.poly_of.resize(corners.ids.size());
+  g.run_of.assign(corners.ids.size(), EdgePairs::kNoRun);
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, corners.size(), 256), [&](const auto& r) {
     for (std::size_t p = r.begin(); p != r.end(); ++p) {
       const auto ids = corners[p];
       for (std::size_t k = 0; k < ids.size(); ++k) {
-        const std::uint64_t a = ids[k], b = ids[(k + 1) % ids.size()];
         const auto c = static_cast<std::uint32_t>(corners.offsets[p] + k);
-        keyed[c] = {(std::min(a, b) << 32) | std::max(a, b), c};
         g.poly_of[c] = static_cast<std::uint32_t>(p);
+        if (settled(p)) continue;
+        const std::uint64_t a = ids[k], b = ids[(k + 1) % ids.size()];
+        keyed[slot[p] + k] = {(std::min(a, b) << 32) | std::max(a, b), c};
       }
     }
   });
   sort_pairs(keyed);
   g.corner.resize(n);
-  g.run_of.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     if (i == 0 || keyed[i].first != keyed[i - 1].first) g.run_begin.push_back(static_cast<std::uint32_t>(i));
     g.corner[i] = keyed[i].second;
@@ -144,8 +151,16 @@ bool search_by_operand(const InputTopology* topology) {
 
 VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts,
                                   const InputTopology* topology) {
-  std::vector<std::uint32_t> everyone(verts.exact.size());
-  for (std::uint32_t v = 0; v < everyone.size(); ++v) everyone[v] = v;
+  // Vertices only settled polygons use lie inside no edge (OutputPolygon::settled).
+  std::vector<char> wanted(verts.exact.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 1024), [&](const auto& r) {
+    for (std::size_t p = r.begin(); p != r.end(); ++p)
+      if (!polys[p].settled)
+        for (const std::uint32_t v : verts.corners[p]) std::atomic_ref<char>(wanted[v]).store(1, std::memory_order_relaxed);
+  });
+  std::vector<std::uint32_t> everyone;
+  for (std::uint32_t v = 0; v < wanted.size(); ++v)
+    if (wanted[v]) everyone.push_back(v);
   const double cell = mean_edge_length(polys, verts);
   if (!search_by_operand(topology)) return VertexIndex(verts.rounded, std::move(everyone), cell);
   // Bit o of used_by[v]: some polygon of operand o has v as a corner. Class
@@ -160,8 +175,9 @@ VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const Ou
                                                            std::memory_order_relaxed);
   });
   constexpr std::uint8_t kClass[4] = {0, 2, 0, 1};  // by used_by; 0 (unused) cannot occur
-  for (std::uint8_t& u : used_by) u = kClass[u];
-  return VertexIndex(verts.rounded, std::move(everyone), cell, used_by);
+  std::vector<std::uint8_t> member_class(everyone.size());
+  for (std::size_t i = 0; i < everyone.size(); ++i) member_class[i] = kClass[used_by[everyone[i]]];
+  return VertexIndex(verts.rounded, std::move(everyone), cell, member_class);
 }
 
 Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const OutputVertices& verts,
@@ -189,11 +205,13 @@ Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const Out
       if (!found.empty()) inside[run] = found;
     }
   });
-  // Only polygons that gain a vertex get a cycle of their own.
+  // Only polygons that gain a vertex get a cycle of their own (never a
+  // settled one: its edges were not searched).
   std::vector<std::vector<std::uint32_t>> grown(polys.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const auto& r) {
     std::vector<std::uint32_t> cycle;
     for (std::size_t p = r.begin(); p != r.end(); ++p) {
+      if (polys[p].settled) continue;
       const auto ids = corners[p];
       cycle.clear();
       for (std::size_t k = 0; k < ids.size(); ++k) {
