@@ -220,6 +220,11 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       if (ctx.solid[o]) result.stats.operands[o].solid = SolidStatus::Promised;
     ctx.closed.resize(operands.size());
     for (std::size_t o = 0; o < operands.size(); ++o) ctx.closed[o] = open[o] == 0 || ctx.solid[o];
+    // The operands' triangle trees: the proof searches each against itself,
+    // the solid path pairs of them.
+    std::optional<core::OperandTrees> trees;
+    if (std::optional<std::vector<std::uint32_t>> ranges = core::operand_ranges(root.soup, operands.size()))
+      arena.execute([&] { trees = core::build_operand_trees(std::move(*ranges), grid.corners); });
     if (options.detect_solid) {
       // Closed operands not promised solid are proven solid (or not) exactly,
       // all at once: a small operand's proof alone cannot keep the threads
@@ -233,7 +238,10 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
         std::vector<core::SolidFinding> findings(unproven.size());
         arena.execute([&] {
           tbb::parallel_for(std::size_t{0}, unproven.size(),
-                            [&](std::size_t k) { findings[k] = core::check_solid(root, grid, unproven[k]); });
+                            [&](std::size_t k) {
+                              findings[k] = core::check_solid(root, grid, unproven[k],
+                                                              trees ? &trees->tree[unproven[k]] : nullptr);
+                            });
         });
         for (std::size_t k = 0; k < unproven.size(); ++k)
           ctx.solid[unproven[k]] = record_proof(findings[k], unproven[k], result);
@@ -249,8 +257,10 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       // subdivision. It declines only where every trace it tried met
       // something degenerately; the subdivision then solves as always.
       const bool all_solid = std::all_of(ctx.solid.begin(), ctx.solid.end(), [](char s) { return s != 0; });
-      if (all_solid && options.solid_path) {
-        if (std::optional<std::vector<core::OutputPolygon>> direct = core::solve_solid(root.soup, grid, root.box, ctx)) {
+      if (!all_solid || !options.solid_path) trees.reset();  // the subdivision does not use them
+      if (trees) {
+        if (std::optional<std::vector<core::OutputPolygon>> direct =
+                core::solve_solid(root.soup, grid, root.box, ctx, *trees)) {
           polys = std::move(*direct);
           result.stats.solid_path = true;
           return;

@@ -20,14 +20,19 @@ namespace {
 
 class Search {
  public:
-  Search(std::span<const ContactTriangle> tris, std::size_t max_pairs) : tris_(tris), max_pairs_(max_pairs) {
+  Search(std::span<const ContactTriangle> tris, std::size_t max_pairs, const TriangleTree* tree)
+      : tris_(tris), max_pairs_(max_pairs) {
     const std::size_t n = tris.size();
     budget_ = kBudgetPerTriangle * n + (std::size_t{1} << 16);
-    std::vector<Box32> boxes(n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t i = r.begin(); i != r.end(); ++i) boxes[i] = box_of(tris[i].p);
-    });
-    tree_ = TriangleTree(boxes);
+    if (!tree) {
+      std::vector<Box32> boxes(n);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) boxes[i] = box_of(tris[i].p);
+      });
+      own_tree_ = TriangleTree(boxes);
+      tree = &own_tree_;
+    }
+    tree_ptr_ = tree;
   }
 
   ContactSearchResult run() {
@@ -45,10 +50,12 @@ class Search {
   /// Examined pairs are added to the shared count in batches of this size.
   static constexpr std::size_t kFlush = std::size_t{1} << 14;
 
+  const TriangleTree& tree() const { return *tree_ptr_; }
+
   bool done() const {
     return found_.load(std::memory_order_relaxed) >= max_pairs_ || gave_up_.load(std::memory_order_relaxed);
   }
-  bool spawns(int depth) const { return ((tree_.first_leaf() + 1) >> depth) >= kSpawnLeaves; }
+  bool spawns(int depth) const { return ((tree().first_leaf() + 1) >> depth) >= kSpawnLeaves; }
 
   /// Adds this task's examined pairs to the total; past the budget, give up.
   void flush(std::size_t& examined) {
@@ -60,7 +67,7 @@ class Search {
   /// All pairs within the subtree of `node` (at `depth`).
   void self(std::size_t node, int depth, std::size_t& examined) {
     if (done()) return;
-    if (depth == tree_.depth()) {
+    if (depth == tree().depth()) {
       leaf_pairs(node, node, examined);
       return;
     }
@@ -80,8 +87,8 @@ class Search {
 
   /// All pairs with one triangle under a and one under b (same depth, disjoint).
   void cross(std::size_t a, std::size_t b, int depth, std::size_t& examined) {
-    if (!overlap(tree_.node(a), tree_.node(b)) || done()) return;
-    if (depth == tree_.depth()) {
+    if (!overlap(tree().node(a), tree().node(b)) || done()) return;
+    if (depth == tree().depth()) {
       leaf_pairs(a, b, examined);
       return;
     }
@@ -112,14 +119,14 @@ class Search {
   /// The exact test for every pair of boxes that meet between leaf nodes a
   /// and b (a == b: the pairs within one leaf).
   void leaf_pairs(std::size_t a, std::size_t b, std::size_t& examined) {
-    const auto [ab, ae] = tree_.leaf_slots(a);
-    const auto [bb, be] = tree_.leaf_slots(b);
+    const auto [ab, ae] = tree().leaf_slots(a);
+    const auto [bb, be] = tree().leaf_slots(b);
     for (std::size_t i = ab; i < ae; ++i) {
-      if (!overlap(tree_.box(i), tree_.node(b))) continue;  // one test instead of one per triangle of b
+      if (!overlap(tree().box(i), tree().node(b))) continue;  // one test instead of one per triangle of b
       for (std::size_t j = a == b ? i + 1 : bb; j < be; ++j) {
         ++examined;
-        if (!overlap(tree_.box(i), tree_.box(j)) ||
-            !triangles_meet_improperly(tris_[tree_.item(i)], tris_[tree_.item(j)]))
+        if (!overlap(tree().box(i), tree().box(j)) ||
+            !triangles_meet_improperly(tris_[tree().item(i)], tris_[tree().item(j)]))
           continue;
         if (found_.fetch_add(1) + 1 >= max_pairs_) return;
       }
@@ -128,7 +135,8 @@ class Search {
   }
 
   std::span<const ContactTriangle> tris_;
-  TriangleTree tree_;
+  TriangleTree own_tree_;  ///< when the caller gave none
+  const TriangleTree* tree_ptr_ = nullptr;
   std::size_t max_pairs_;
   std::size_t budget_ = 0;
   std::atomic<std::size_t> found_{0};
@@ -138,9 +146,10 @@ class Search {
 
 }  // namespace
 
-ContactSearchResult find_contacts(std::span<const ContactTriangle> tris, std::size_t max_pairs) {
+ContactSearchResult find_contacts(std::span<const ContactTriangle> tris, std::size_t max_pairs,
+                                  const TriangleTree* tree) {
   if (tris.size() < 2 || max_pairs == 0) return {};
-  return Search(tris, max_pairs).run();
+  return Search(tris, max_pairs, tree).run();
 }
 
 }  // namespace ember::core

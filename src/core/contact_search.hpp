@@ -13,6 +13,7 @@
 #include <span>
 
 #include "core/solid_check.hpp"
+#include "core/triangle_tree.hpp"
 
 namespace ember::core {
 
@@ -32,7 +33,9 @@ struct ContactSearchResult {
 /// found before the search stopped depends on the schedule; both answers
 /// mean "not solid", so only the report (count, reason) can differ, never
 /// the Boolean's path or output. Parallel (oneTBB) in the caller's arena.
-ContactSearchResult find_contacts(std::span<const ContactTriangle> tris, std::size_t max_pairs);
+/// `tree`, if given, is the tree over tris' boxes (TriangleTree(box_of(tris[i].p)...)), built once for the proof and the solid path.
+ContactSearchResult find_contacts(std::span<const ContactTriangle> tris, std::size_t max_pairs,
+                                  const TriangleTree* tree = nullptr);
 
 /// The work budget: box pairs examined per triangle (plus a fixed allowance
 /// for small inputs) before the search gives up. Ordinary meshes examine

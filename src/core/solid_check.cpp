@@ -56,7 +56,8 @@ std::vector<std::uint32_t> component_representatives(const GridTriangles& grid,
 
 }  // namespace
 
-SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand) {
+SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand,
+                         const TriangleTree* tree) {
   std::vector<std::uint32_t> members;
   for (const SoupPolygon& p : root.soup)
     if (p.operand == operand) members.push_back(p.id);
@@ -70,7 +71,8 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
                         tris[i] = contact_triangle(grid.corners[members[i]], grid.vertex_ids[members[i]]);
                     });
   certify_embedded_stars(tris);  // tris holds all of the operand's triangles, as a star must
-  const ContactSearchResult contacts = find_contacts(tris, OperandReport::kMaxReportedPairs);
+  if (tree && tree->size() != tris.size()) tree = nullptr;  // not this operand's: build one
+  const ContactSearchResult contacts = find_contacts(tris, OperandReport::kMaxReportedPairs, tree);
   tris = {};
   if (contacts.pairs > 0) return {SolidVerdict::SelfIntersecting, contacts.pairs, 0};
   if (contacts.gave_up) return {SolidVerdict::TooComplex, 0, 0};

@@ -18,6 +18,7 @@
 #include <span>
 
 #include "core/solve.hpp"
+#include "core/triangle_tree.hpp"
 
 namespace ember::core {
 
@@ -53,7 +54,9 @@ struct SolidFinding {
 /// Decides whether `operand` is solid. `root` is the whole problem (its soup
 /// holds every operand's polygons, polygon i has id i; its reference point is
 /// outside everything).
-SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand);
+/// `tree`, if given, is the operand's triangle tree (build_operand_trees).
+SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand,
+                         const TriangleTree* tree = nullptr);
 
 /// A grid triangle prepared for the contact test: its corners, their welded
 /// ids (equal iff equal positions, within the triangles compared) and its

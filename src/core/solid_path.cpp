@@ -22,24 +22,6 @@ namespace ember::core {
 
 namespace {
 
-std::optional<OperandTrees> build_trees(const Soup& soup, const GridTriangles& grid, std::size_t operands) {
-  OperandTrees t;
-  t.begin.assign(operands + 1, 0);
-  for (std::size_t i = 1; i < soup.size(); ++i)
-    if (soup[i].operand < soup[i - 1].operand) return std::nullopt;  // not grouped by operand
-  for (std::size_t o = 0, i = 0; o <= operands; ++o) {
-    while (i < soup.size() && soup[i].operand < o) ++i;
-    t.begin[o] = static_cast<std::uint32_t>(i);
-  }
-  t.tree.resize(operands);
-  tbb::parallel_for(std::size_t{0}, operands, [&](std::size_t o) {
-    std::vector<Box32> boxes(t.begin[o + 1] - t.begin[o]);
-    for (std::size_t i = 0; i < boxes.size(); ++i) boxes[i] = box_of(grid.corners[t.begin[o] + i]);
-    t.tree[o] = TriangleTree(boxes);
-  });
-  return t;
-}
-
 /// The meeting pairs, both ways, grouped by triangle: partners of id are
 /// ids[begin[id] .. begin[id + 1]), ascending.
 struct Partners {
@@ -283,16 +265,25 @@ std::uint32_t untouched_neighbour_along(const Polygon& f, const Polygon& t, cons
 
 }  // namespace
 
+std::optional<std::vector<std::uint32_t>> operand_ranges(const Soup& soup, std::size_t operands) {
+  std::vector<std::uint32_t> begin(operands + 1, 0);
+  for (std::size_t i = 1; i < soup.size(); ++i)
+    if (soup[i].operand < soup[i - 1].operand) return std::nullopt;  // not grouped by operand
+  for (std::size_t o = 0, i = 0; o <= operands; ++o) {
+    while (i < soup.size() && soup[i].operand < o) ++i;
+    begin[o] = static_cast<std::uint32_t>(i);
+  }
+  return begin;
+}
+
 std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const GridTriangles& grid, const Box& box,
-                                                      const SolveContext& ctx) {
+                                                      const SolveContext& ctx, const OperandTrees& trees) {
   const std::size_t n = soup.size(), operands = ctx.operands;
-  std::optional<OperandTrees> trees = build_trees(soup, grid, operands);
-  if (!trees) return std::nullopt;
   // 1. Which triangles another operand's triangles meet, and which.
-  const Partners partners = find_partners(grid, *trees, n);
+  const Partners partners = find_partners(grid, trees, n);
   std::vector<char> touched(n);
   for (std::uint32_t i = 0; i < n; ++i) touched[i] = partners.touched(i);
-  const Tracer tracer{soup, *trees, box, operands};
+  const Tracer tracer{soup, trees, box, operands};
   std::atomic<bool> failed{false};
 
   // 2. Untouched triangles: components across manifold edges, one trace each.
@@ -335,7 +326,7 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const Gr
   constexpr std::size_t kChunk = 256;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;  // (operand, first slot)
   for (std::uint32_t o = 0; o < operands; ++o)
-    for (std::size_t s = 0; s < trees->tree[o].size(); s += kChunk) chunks.emplace_back(o, static_cast<std::uint32_t>(s));
+    for (std::size_t s = 0; s < trees.tree[o].size(); s += kChunk) chunks.emplace_back(o, static_cast<std::uint32_t>(s));
   std::vector<std::vector<OutputPolygon>> chunk_out(chunks.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
     PolygonCache cache(grid);
@@ -346,10 +337,10 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const Gr
     for (std::size_t c = r.begin(); c != r.end(); ++c) {
       const auto [o, first] = chunks[c];
       handover.clear();  // a chunk's result must not depend on the chunks before it
-      const TriangleTree& tree = trees->tree[o];
+      const TriangleTree& tree = trees.tree[o];
       std::vector<OutputPolygon>& out = chunk_out[c];
       for (std::size_t slot = first; slot < std::min(tree.size(), first + kChunk) && !failed.load(); ++slot) {
-        const std::uint32_t id = trees->begin[o] + tree.item(slot);
+        const std::uint32_t id = trees.begin[o] + tree.item(slot);
         if (!touched[id]) continue;
         cache.reset_if_full();
         cs.partners = partners.of(id);

@@ -34,16 +34,22 @@
 
 #include "core/solid_check.hpp"
 #include "core/solve.hpp"
+#include "core/triangle_tree.hpp"
 
 namespace ember::core {
 
 /// The Boolean of the root soup (polygon i has id i, grid.corners[i] its
-/// corners; every operand solid in `ctx`) inside the root box `box`, whose
+/// corners; every operand solid in `ctx`; `trees` its operands' triangle
+/// trees, build_operand_trees over operand_ranges) inside the root box `box`, whose
 /// boundary no polygon touches. The pieces on the result's surface, in a
 /// deterministic order (unbuilt whole triangles and explicit pieces; no
 /// paths). nullopt if some piece found no non-degenerate trace (the caller
 /// then solves on the subdivision instead).
 std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const GridTriangles& grid, const Box& box,
-                                                      const SolveContext& ctx);
+                                                      const SolveContext& ctx, const OperandTrees& trees);
+
+/// Operand o's polygons of the root soup are [begin[o], begin[o + 1]);
+/// nullopt if the soup does not list the operands in order.
+std::optional<std::vector<std::uint32_t>> operand_ranges(const Soup& soup, std::size_t operands);
 
 }  // namespace ember::core

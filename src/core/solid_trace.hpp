@@ -17,13 +17,6 @@
 
 namespace ember::core {
 
-/// Per operand: its triangles' ids [begin[o], begin[o + 1]) (the soup lists
-/// operands in order) and their tree (item i is id begin[o] + i).
-struct OperandTrees {
-  std::vector<std::uint32_t> begin;
-  std::vector<TriangleTree> tree;
-};
-
 /// What every trace reads.
 struct Tracer {
   const Soup& soup;  ///< the root soup: polygon i has id i

@@ -101,4 +101,16 @@ class TriangleTree {
   int depth_ = 0;
 };
 
+/// Per operand: its triangles' ids [begin[o], begin[o + 1]) and their tree
+/// (item i is id begin[o] + i). The solid proof searches each operand's tree
+/// against itself, the solid path pairs of them.
+struct OperandTrees {
+  std::vector<std::uint32_t> begin;
+  std::vector<TriangleTree> tree;
+};
+
+/// The trees of every operand's triangles: operand o's are triangles
+/// [begin[o], begin[o + 1]) with corners `corners`. Parallel (oneTBB).
+OperandTrees build_operand_trees(std::vector<std::uint32_t> begin, std::span<const std::array<IntPoint, 3>> corners);
+
 }  // namespace ember::core
