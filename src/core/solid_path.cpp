@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <deque>
 
 #include "core/pieces.hpp"
@@ -143,8 +144,30 @@ class PolygonCache {
   std::size_t used_ = 0;
 };
 
+/// A conservative box of a polygon from its vertices' approximations
+/// (within 8 ulp of coordinates below 2^26: a 2^-16 margin covers them).
+struct PieceBox {
+  std::array<double, 3> lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+};
+PieceBox piece_box(const Polygon& p) {
+  constexpr double kMargin = 1.0 / 65536;
+  PieceBox b;
+  for (const Point& v : p.vertices)
+    for (int a = 0; a < 3; ++a) {
+      b.lo[a] = std::min(b.lo[a], approx(v)[a] - kMargin);
+      b.hi[a] = std::max(b.hi[a], approx(v)[a] + kMargin);
+    }
+  return b;
+}
+bool apart(const PieceBox& a, const PieceBox& b) {
+  for (int i = 0; i < 3; ++i)
+    if (a.hi[i] < b.lo[i] || b.hi[i] < a.lo[i]) return true;
+  return false;
+}
+
 /// Scratch of the polygon-local BSP of one triangle.
 struct CutScratch {
+  std::vector<PieceBox> boxes;  ///< per piece
   std::span<const std::uint32_t> partners;
   std::vector<Piece> pieces, next;
   std::vector<std::int8_t> other_signs, signs;
@@ -182,13 +205,23 @@ bool cut_triangle(const Polygon& t, std::uint32_t id, PolygonCache& cache, CutSc
     std::swap(cs.pieces, cs.next);
     if (cs.pieces.empty()) return false;
   }
+  // Pieces skip partners their boxes are apart from (a sliver cut by many
+  // partners along its length would test every piece against every one).
+  cs.boxes.clear();
+  for (const Piece& p : cs.pieces) cs.boxes.push_back(piece_box(p.poly));
   const PlaneApprox approx(t.support);
   for (const std::uint32_t q : cs.partners) {
     const Polygon& o = cache.get(q);
     if (coplanar(t.support, o.support) || !touches_plane(o, t.support, approx, cs.other_signs)) continue;
+    const PieceBox ob = piece_box(o);
     const std::size_t n = cs.pieces.size();
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < n; ++i) {
+      if (apart(cs.boxes[i], ob)) continue;
       cut_by_transverse(cs.pieces, i, t.support, o, cs.other_signs, cs.signs, cs.cons, cs.neg, cs.pos);
+      if (cs.pieces.size() == cs.boxes.size()) continue;
+      cs.boxes[i] = piece_box(cs.pieces[i].poly);
+      cs.boxes.push_back(piece_box(cs.pieces.back().poly));
+    }
   }
   return untouched;
 }
