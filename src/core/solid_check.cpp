@@ -7,11 +7,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <numeric>
 
 #include "core/contact_search.hpp"
 #include "core/vertex_stars.hpp"
-#include "core/weld.hpp"
 #include "ember/boolean.hpp"
 
 namespace ember::core {
@@ -25,30 +23,23 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
 }
 
 /// Components of the members joined across manifold edges (one use in each
-/// direction, on equal grid positions). Returns one representative (the
-/// first member in order) per component.
+/// direction, on equal grid positions: the set-up's GridTriangles::neighbors,
+/// which are of the same operand). Returns one representative (the first
+/// member in order) per component.
 std::vector<std::uint32_t> component_representatives(const GridTriangles& grid,
                                                      const std::vector<std::uint32_t>& members) {
-  WeldedTriangles welded;
-  welded.ids.reserve(members.size());
-  for (const std::uint32_t m : members) {
-    welded.ids.push_back(grid.vertex_ids[m]);
-    for (const std::uint32_t v : grid.vertex_ids[m]) welded.vertex_count = std::max<std::size_t>(welded.vertex_count, v + 1);
-  }
-  const std::size_t n = members.size();
-  std::vector<std::uint32_t> parent(n);
-  std::iota(parent.begin(), parent.end(), 0u);
-  for_each_edge(welded, [&](std::span<const EdgeUse> uses) {
-    if (uses.size() == 2 && uses[0].forward != uses[1].forward)
-      parent[find(parent, uses[0].tri)] = find(parent, uses[1].tri);
-  });
+  std::vector<std::uint32_t> parent(grid.neighbors.size());  // by soup id; only members' entries are used
+  for (const std::uint32_t m : members) parent[m] = m;
+  for (const std::uint32_t m : members)
+    for (const std::uint32_t q : grid.neighbors[m])
+      if (q != kNoNeighbor) parent[find(parent, m)] = find(parent, q);
   std::vector<std::uint32_t> reps;
-  std::vector<char> seen(n, 0);
-  for (std::uint32_t t = 0; t < n; ++t) {
-    const std::uint32_t r = find(parent, t);
+  std::vector<char> seen(grid.neighbors.size(), 0);
+  for (const std::uint32_t m : members) {
+    const std::uint32_t r = find(parent, m);
     if (!seen[r]) {
       seen[r] = 1;
-      reps.push_back(members[t]);
+      reps.push_back(m);
     }
   }
   return reps;
