@@ -312,17 +312,18 @@ TEST(Cli, SolidCheckIsOnByDefaultAndCanBeSwitchedOff) {
   TempDir dir;
   const std::string a = put(dir, "a.obj", box_a()), b = put(dir, "b.obj", box_b());
   const fs::path out = dir / "out.obj";
-  const auto solid_operands = [&](std::vector<std::string> extra) {
+  // (solid operands, solid path taken: --stats "solid_path", 1 when every operand is solid)
+  const auto solid = [&](std::vector<std::string> extra) {
     std::vector<std::string> args{"union", a, b, "-o", out.string(), "--stats"};
     args.insert(args.end(), extra.begin(), extra.end());
     const RunResult r = run_cli(dir, args);
     EXPECT_EQ(r.exit_code, 0) << describe(r);
-    return json_number(r.err, "solid_operands");
+    return std::pair{json_number(r.err, "solid_operands"), json_number(r.err, "solid_path")};
   };
-  EXPECT_EQ(solid_operands({}), 2);                    // both boxes proven solid
-  EXPECT_EQ(solid_operands({"--no-solid-check"}), 0);  // general path
-  EXPECT_EQ(solid_operands({"--assume-solid"}), 2);    // promised
-  EXPECT_EQ(solid_operands({"--assume-solid", "--no-solid-check"}), 2);
+  EXPECT_EQ(solid({}), std::pair(2.0, 1.0));                    // both boxes proven solid
+  EXPECT_EQ(solid({"--no-solid-check"}), std::pair(0.0, 0.0));  // general path
+  EXPECT_EQ(solid({"--assume-solid"}), std::pair(2.0, 1.0));    // promised
+  EXPECT_EQ(solid({"--assume-solid", "--no-solid-check"}), std::pair(2.0, 1.0));
 }
 
 TEST(Cli, ThreadCountDoesNotChangeTheOutputBytes) {

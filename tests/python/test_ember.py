@@ -74,6 +74,7 @@ class Booleans(unittest.TestCase):
         self.assertTrue((prov[:, 1] < 12).all())
         self.assertEqual(stats["input_triangles"], 24)
         self.assertEqual(stats["threads"], 1)
+        self.assertTrue(stats["solid_path"])  # both boxes proven solid
         self.assertIn("time_ms", stats)
         self.assertEqual(len(ember.union(self.a, self.b, return_stats=True)), 3)
 
