@@ -15,7 +15,6 @@
 
 #include "core/pieces.hpp"
 #include "core/solid_handover.hpp"
-#include "core/sort_pairs.hpp"
 #include "core/solid_trace.hpp"
 #include "core/triangle_tree.hpp"
 
@@ -82,21 +81,27 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
       const TriangleTree &A = trees.tree[a], &B = trees.tree[b];
       if (!A.empty() && !B.empty()) meeting_pairs(grid, A, trees.begin[a], 0, 0, B, trees.begin[b], 0, 0, sink);
     }
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> both;
-  for (const auto& local : sink)
-    for (const auto& [x, y] : local) {
-      both.emplace_back(x, y);
-      both.emplace_back(y, x);
-    }
-  sort_pairs(both);
+  // Counting sort by triangle, then each list ascending (lists are short,
+  // and the result does not depend on the order pairs were found in).
   Partners p;
   p.begin.assign(n + 1, 0);
-  p.ids.resize(both.size());
-  for (std::size_t i = 0; i < both.size(); ++i) {
-    ++p.begin[both[i].first + 1];
-    p.ids[i] = both[i].second;
-  }
+  for (const auto& local : sink)
+    for (const auto& [x, y] : local) {
+      ++p.begin[x + 1];
+      ++p.begin[y + 1];
+    }
   for (std::size_t i = 0; i < n; ++i) p.begin[i + 1] += p.begin[i];
+  p.ids.resize(p.begin[n]);
+  std::vector<std::uint32_t> fill(p.begin.begin(), p.begin.end() - 1);
+  for (const auto& local : sink)
+    for (const auto& [x, y] : local) {
+      p.ids[fill[x]++] = y;
+      p.ids[fill[y]++] = x;
+    }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      std::sort(p.ids.begin() + p.begin[i], p.ids.begin() + p.begin[i + 1]);
+  });
   return p;
 }
 
@@ -118,9 +123,11 @@ class PolygonCache {
     if (2 * ++used_ > slots_.size()) grow();
     return pool_[used_ - 1];
   }
-  /// Forgets everything (buffers are kept) once the cache is large.
-  void reset_if_full() {
-    if (used_ < 256) return;
+  const std::array<IntPoint, 3>& corners(std::uint32_t id) const { return grid_.corners[id]; }
+  /// Forgets everything (buffers are kept) once the cache holds far more
+  /// than the next triangle needs (`partners` + itself).
+  void reset_if_full(std::size_t partners) {
+    if (used_ < 256 + 2 * partners) return;
     std::fill(slots_.begin(), slots_.end(), kEmpty);
     used_ = 0;
   }
@@ -163,6 +170,21 @@ bool apart(const PieceBox& a, const PieceBox& b) {
   for (int i = 0; i < 3; ++i)
     if (a.hi[i] < b.lo[i] || b.hi[i] < a.lo[i]) return true;
   return false;
+}
+
+/// A partner's corners (its built polygon's vertices, in order) against t's
+/// plane, exactly in 82-bit integers; false if all lie strictly on one side.
+bool corners_touch_plane(const std::array<IntPoint, 3>& c, const Plane& plane, std::vector<std::int8_t>& signs) {
+  signs.resize(3);
+  bool neg = false, pos = false, zero = false;
+  for (int v = 0; v < 3; ++v) {
+    const int s = classify(c[v], plane);
+    signs[v] = static_cast<std::int8_t>(s);
+    zero |= s == 0;
+    neg |= s < 0;
+    pos |= s > 0;
+  }
+  return zero || (neg && pos);
 }
 
 /// Scratch of the polygon-local BSP of one triangle.
@@ -209,10 +231,9 @@ bool cut_triangle(const Polygon& t, std::uint32_t id, PolygonCache& cache, CutSc
   // partners along its length would test every piece against every one).
   cs.boxes.clear();
   for (const Piece& p : cs.pieces) cs.boxes.push_back(piece_box(p.poly));
-  const PlaneApprox approx(t.support);
   for (const std::uint32_t q : cs.partners) {
     const Polygon& o = cache.get(q);
-    if (coplanar(t.support, o.support) || !touches_plane(o, t.support, approx, cs.other_signs)) continue;
+    if (coplanar(t.support, o.support) || !corners_touch_plane(cache.corners(q), t.support, cs.other_signs)) continue;
     const PieceBox ob = piece_box(o);
     const std::size_t n = cs.pieces.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -375,8 +396,8 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const Gr
       for (std::size_t slot = first; slot < std::min(tree.size(), first + kChunk) && !failed.load(); ++slot) {
         const std::uint32_t id = trees.begin[o] + tree.item(slot);
         if (!touched[id]) continue;
-        cache.reset_if_full();
         cs.partners = partners.of(id);
+        cache.reset_if_full(cs.partners.size());
         const Polygon& t = cache.get(id);
         const bool whole = cut_triangle(t, id, cache, cs) && cs.pieces.size() == 1;
         handover.begin_triangle(id, t, cs.partners, grid);
