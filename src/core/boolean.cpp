@@ -221,10 +221,16 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     ctx.closed.resize(operands.size());
     for (std::size_t o = 0; o < operands.size(); ++o) ctx.closed[o] = open[o] == 0 || ctx.solid[o];
     // The operands' triangle trees: the proof searches each against itself,
-    // the solid path pairs of them.
+    // the solid path pairs of them. Built only when every operand can end up
+    // solid (promised, or closed and to be proven); otherwise the proof
+    // builds its own.
     std::optional<core::OperandTrees> trees;
-    if (std::optional<std::vector<std::uint32_t>> ranges = core::operand_ranges(root.soup, operands.size()))
-      arena.execute([&] { trees = core::build_operand_trees(std::move(*ranges), grid.corners); });
+    bool may_all_be_solid = options.solid_path;
+    for (std::size_t o = 0; o < operands.size(); ++o)
+      may_all_be_solid &= ctx.solid[o] || (options.detect_solid && open[o] == 0);
+    if (may_all_be_solid)
+      if (std::optional<std::vector<std::uint32_t>> ranges = core::operand_ranges(root.soup, operands.size()))
+        arena.execute([&] { trees = core::build_operand_trees(std::move(*ranges), grid.corners); });
     if (options.detect_solid) {
       // Closed operands not promised solid are proven solid (or not) exactly,
       // all at once: a small operand's proof alone cannot keep the threads
@@ -257,7 +263,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       // subdivision. It declines only where every trace it tried met
       // something degenerately; the subdivision then solves as always.
       const bool all_solid = std::all_of(ctx.solid.begin(), ctx.solid.end(), [](char s) { return s != 0; });
-      if (!all_solid || !options.solid_path) trees.reset();  // the subdivision does not use them
+      if (!all_solid) trees.reset();  // the subdivision does not use them
       if (trees) {
         if (std::optional<std::vector<core::OutputPolygon>> direct =
                 core::solve_solid(root.soup, grid, root.box, ctx, *trees)) {

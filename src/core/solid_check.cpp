@@ -22,30 +22,25 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
   return x;
 }
 
-/// Components of the members joined across manifold edges (one use in each
-/// direction, on equal grid positions: the set-up's GridTriangles::neighbors,
-/// which are of the same operand). Returns one representative (the first
-/// member in order) per component.
-std::vector<std::uint32_t> component_representatives(const GridTriangles& grid,
-                                                     const std::vector<std::uint32_t>& members) {
-  std::vector<std::uint32_t> parent(grid.neighbors.size());  // by soup id; only members' entries are used
-  for (const std::uint32_t m : members) parent[m] = m;
-  for (const std::uint32_t m : members)
-    for (const std::uint32_t q : grid.neighbors[m])
-      if (q != kNoNeighbor) parent[find(parent, m)] = find(parent, q);
-  std::vector<std::uint32_t> reps;
-  std::vector<char> seen(grid.neighbors.size(), 0);
-  for (const std::uint32_t m : members) {
-    const std::uint32_t r = find(parent, m);
-    if (!seen[r]) {
-      seen[r] = 1;
-      reps.push_back(m);
+}  // namespace
+
+std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, const std::vector<char>& keep) {
+  const auto n = static_cast<std::uint32_t>(keep.size());
+  std::vector<std::uint32_t> parent(n);
+  for (std::uint32_t i = 0; i < n; ++i) parent[i] = i;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!keep[i]) continue;
+    for (const std::uint32_t j : grid.neighbors[i]) {
+      if (j == kNoNeighbor || !keep[j]) continue;
+      const std::uint32_t ri = find(parent, i), rj = find(parent, j);
+      if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);  // the root is the smallest id
     }
   }
-  return reps;
+  // A non-root's parent is a smaller id: in ascending order every earlier
+  // entry is already its root.
+  for (std::uint32_t i = 0; i < n; ++i) parent[i] = parent[parent[i]];
+  return parent;
 }
-
-}  // namespace
 
 SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand,
                          const TriangleTree* tree) {
@@ -67,7 +62,14 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
   tris = {};
   if (contacts.pairs > 0) return {SolidVerdict::SelfIntersecting, contacts.pairs, 0};
   if (contacts.gave_up) return {SolidVerdict::TooComplex, 0, 0};
-  const std::vector<std::uint32_t> reps = component_representatives(grid, members);
+  // One representative per component across manifold edges: its smallest
+  // id, the first member in order.
+  std::vector<char> keep(grid.neighbors.size(), 0);
+  for (const std::uint32_t m : members) keep[m] = 1;
+  const std::vector<std::uint32_t> component = neighbour_components(grid, keep);
+  std::vector<std::uint32_t> reps;
+  for (const std::uint32_t m : members)
+    if (component[m] == m) reps.push_back(m);
   // Each trace scans the whole soup a few times: bound the total work.
   constexpr std::size_t kTraceBudget = std::size_t{1} << 25;
   if (reps.size() > 8 && reps.size() * root.soup.size() > kTraceBudget) return {SolidVerdict::TooComplex, 0, 0};

@@ -44,6 +44,12 @@ struct GridTriangles {
   std::vector<std::array<std::uint32_t, 3>> neighbors;
 };
 
+/// Components of the triangles with keep[i], joined across their manifold
+/// edges (GridTriangles::neighbors, both ends kept): per kept triangle the
+/// smallest id of its component (other entries unspecified). Shared by the
+/// proof's components and the solid path's untouched ones.
+std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, const std::vector<char>& keep);
+
 /// The verdict and, for the user, how much evidence was found against it.
 struct SolidFinding {
   SolidVerdict verdict = SolidVerdict::Solid;

@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cmath>
 #include <deque>
 
 #include "core/pieces.hpp"
@@ -151,19 +150,13 @@ class PolygonCache {
   std::size_t used_ = 0;
 };
 
-/// A conservative box of a polygon from its vertices' approximations
-/// (within 8 ulp of coordinates below 2^26: a 2^-16 margin covers them).
+/// A piece's conservative box (approx_bounds).
 struct PieceBox {
-  std::array<double, 3> lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  std::array<double, 3> lo, hi;
 };
 PieceBox piece_box(const Polygon& p) {
-  constexpr double kMargin = 1.0 / 65536;
   PieceBox b;
-  for (const Point& v : p.vertices)
-    for (int a = 0; a < 3; ++a) {
-      b.lo[a] = std::min(b.lo[a], approx(v)[a] - kMargin);
-      b.hi[a] = std::max(b.hi[a], approx(v)[a] + kMargin);
-    }
+  approx_bounds(p, b.lo, b.hi);
   return b;
 }
 bool apart(const PieceBox& a, const PieceBox& b) {
@@ -259,12 +252,6 @@ OutputPolygon output_of(const SoupPolygon& t, const Polygon* piece, bool flip) {
   return out;
 }
 
-/// Union-find root with path halving.
-std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
-
 /// The untouched triangles joined across manifold edges: roots (each
 /// component's smallest id, ascending) and, per untouched triangle, its
 /// component's index in `roots`.
@@ -274,30 +261,19 @@ struct Components {
 };
 
 Components untouched_components(const GridTriangles& grid, const std::vector<char>& touched) {
-  const auto n = static_cast<std::uint32_t>(touched.size());
+  std::vector<char> untouched(touched.size());
+  for (std::size_t i = 0; i < touched.size(); ++i) untouched[i] = !touched[i];
   Components c;
-  std::vector<std::uint32_t>& parent = c.index;
-  parent.resize(n);
-  for (std::uint32_t i = 0; i < n; ++i) parent[i] = i;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (touched[i]) continue;
-    for (const std::uint32_t j : grid.neighbors[i]) {
-      if (j == kNoNeighbor || touched[j]) continue;
-      const std::uint32_t ri = find(parent, i), rj = find(parent, j);
-      if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);  // the root is the smallest id
-    }
-  }
-  // A non-root's parent is a smaller id, so in ascending order every earlier
-  // entry is final: first each entry becomes its root, then each root its
-  // component's index and each other entry its root's index.
-  for (std::uint32_t i = 0; i < n; ++i) parent[i] = parent[parent[i]];
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (touched[i]) continue;
-    if (parent[i] == i) {
-      parent[i] = static_cast<std::uint32_t>(c.roots.size());
+  c.index = neighbour_components(grid, untouched);
+  // Roots come first in id order: each becomes its component's index, which
+  // the later members of the component then read.
+  for (std::uint32_t i = 0; i < c.index.size(); ++i) {
+    if (!untouched[i]) continue;
+    if (c.index[i] == i) {
+      c.index[i] = static_cast<std::uint32_t>(c.roots.size());
       c.roots.push_back(i);
     } else {
-      parent[i] = parent[parent[i]];  // the root (< i) already holds its index
+      c.index[i] = c.index[c.index[i]];
     }
   }
   return c;

@@ -5,25 +5,44 @@
 
 namespace ember::core {
 
-void update_bounds(SoupPolygon& p) {
-  constexpr double kMargin = 1.0 / 65536;
-  std::array<double, 3> lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  const auto add = [&](const std::array<double, 3>& a) {
+namespace {
+constexpr double kBoundsMargin = 1.0 / 65536;
+}  // namespace
+
+void approx_bounds(const Polygon& poly, std::array<double, 3>& lo, std::array<double, 3>& hi) {
+  lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (const Point& v : poly.vertices)
     for (int i = 0; i < 3; ++i) {
-      lo[i] = std::min(lo[i], a[i]);
-      hi[i] = std::max(hi[i], a[i]);
+      lo[i] = std::min(lo[i], approx(v)[i]);
+      hi[i] = std::max(hi[i], approx(v)[i]);
     }
-  };
-  if (unbuilt(p)) {
-    // The approximation of a grid point (w = 1) is its exact coordinates.
-    for (const IntPoint& c : *p.corners)
-      add({static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z)});
-  } else {
-    for (const Point& v : p.poly->vertices) add(approx(v));
+  for (int i = 0; i < 3; ++i) {
+    lo[i] -= kBoundsMargin;
+    hi[i] += kBoundsMargin;
+  }
+}
+
+void update_bounds(SoupPolygon& p) {
+  if (!unbuilt(p)) {
+    approx_bounds(*p.poly, p.lo, p.hi);
+    return;
+  }
+  // The approximation of a grid point (w = 1) is its exact coordinates.
+  for (int i = 0; i < 3; ++i) {
+    p.lo[i] = HUGE_VAL;
+    p.hi[i] = -HUGE_VAL;
+  }
+  for (const IntPoint& c : *p.corners) {
+    const double x[3] = {static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z)};
+    for (int i = 0; i < 3; ++i) {
+      p.lo[i] = std::min(p.lo[i], x[i]);
+      p.hi[i] = std::max(p.hi[i], x[i]);
+    }
   }
   for (int i = 0; i < 3; ++i) {
-    p.lo[i] = lo[i] - kMargin;
-    p.hi[i] = hi[i] + kMargin;
+    p.lo[i] -= kBoundsMargin;
+    p.hi[i] += kBoundsMargin;
   }
 }
 

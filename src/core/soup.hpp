@@ -47,6 +47,8 @@ using Soup = std::vector<SoupPolygon>;
 /// |coord| < 2^26 so approx() errs by < 2^-26 units; the margin 2^-16 covers it
 /// with room to spare.
 void update_bounds(SoupPolygon& p);
+/// The same conservative box for a built polygon.
+void approx_bounds(const Polygon& poly, std::array<double, 3>& lo, std::array<double, 3>& hi);
 
 /// The soup polygon for input triangle `c` (non-degenerate), unbuilt: its
 /// box and a pointer to `c`, which must outlive it.
