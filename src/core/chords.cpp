@@ -157,4 +157,16 @@ ChordOverlap filter_chords(const Polygon& a, const Plane& sa, const std::vector<
   return surely_disjoint_along(a, pa, signs_a, b, pb, signs_b, d) ? ChordOverlap::kNo : ChordOverlap::kUnsure;
 }
 
+bool chords_separated_by_edge(const Polygon& a, const Polygon& b) {
+  // a lies in {E <= 0} and b in {E >= 0}, so the chords, both on the line
+  // L = sa ∩ sb, share only points of E. L is not in E: E meets sa in the
+  // line of a's edge, and a with vertices strictly on both sides of sb is on
+  // both sides of L in sa. So L meets E in at most one point.
+  for (const Plane& e : a.edges) {
+    const auto beyond = [&](const Point& v) { return classify(v, e) >= 0; };
+    if (std::all_of(b.vertices.begin(), b.vertices.end(), beyond)) return true;
+  }
+  return false;
+}
+
 }  // namespace ember::core

@@ -39,4 +39,14 @@ ChordOverlap filter_chords(const Polygon& a, const Plane& sa, const std::vector<
 bool chords_surely_disjoint(const Polygon& a, const Plane& sa, const std::vector<std::int8_t>& signs_a,
                             const Polygon& b, const Plane& sb, const std::vector<std::int8_t>& signs_b);
 
+/// Exact and cheap, for chords that touch end to end: true if an edge
+/// plane of `a` has all of `b` on its non-negative side. For `a` with
+/// vertices strictly on both sides of b's plane (what the C3 test asks
+/// about), the two chords then share at most one point and do not overlap
+/// with positive length. The common case in a closed mesh: a piece of a
+/// triangle t whose edge was cut along a partner q's plane ends on the line
+/// exactly where the edge that q shares with b crosses t, and b lies beyond
+/// q's plane. False says nothing.
+bool chords_separated_by_edge(const Polygon& a, const Polygon& b);
+
 }  // namespace ember::core

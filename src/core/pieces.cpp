@@ -60,6 +60,7 @@ void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& s
   const ChordOverlap filtered = filter_chords(poly, support, signs, other, other.support, other_signs);
   if (filtered == ChordOverlap::kNo) return;
   if (filtered == ChordOverlap::kUnsure) {
+    if (chords_separated_by_edge(poly, other)) return;
     cons.clear();
     chord_constraints(poly, signs, cons);
     chord_constraints(other, other_signs, cons);

@@ -2,7 +2,10 @@
 // when the two chords have no common point (checked against the exact
 // line_region_nonempty over the chord constraints), including chords that
 // touch at a point reached through an edge crossing, at coordinates up to
-// the grid's limit; and it must decide most clearly separated pairs.
+// the grid's limit; and it must decide most clearly separated pairs. The
+// exact shortcut chords_separated_by_edge may only say "no overlap" when the
+// exact line_region_has_length agrees, and must decide the end-to-end touch
+// of a piece cut along a partner's neighbour.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +19,7 @@ namespace ember::test {
 namespace {
 
 using core::chord_constraints;
+using core::chords_separated_by_edge;
 using core::chords_surely_disjoint;
 
 struct Outcome {
@@ -121,6 +125,55 @@ TEST(Chords, RandomFullRangePairsAreDecidedSoundly) {
   EXPECT_EQ(out.wrong, 0);
   EXPECT_GT(out.tested, 2000);
   EXPECT_GT(out.disjoint_said, out.exact_disjoint / 2);
+}
+
+/// The solid path's configuration: partners p and q of t share an edge that
+/// crosses t; t's piece on the far side of q's plane from p touches p's chord
+/// end to end. Checks the shortcut against the exact test on every piece of t
+/// cut by q's plane, for both p and q; returns how many touching pairs it decided.
+int check_shortcut(const Polygon& t, const Polygon& p, const Polygon& q, int& wrong) {
+  int decided = 0;
+  Polygon neg, pos;
+  if (clip(t, q.support, neg, pos) != ClipSide::Both) return 0;
+  for (const Polygon* piece : {&neg, &pos})
+    for (const Polygon* other : {&p, &q}) {
+      if (parallel(t.support, other->support)) continue;
+      const std::vector<std::int8_t> sa = sides(*piece, other->support), sb = sides(*other, t.support);
+      // What the leaf asks about: the piece straddles the other's plane, which meets t's.
+      const auto has = [](const std::vector<std::int8_t>& s, int v) { return std::find(s.begin(), s.end(), v) != s.end(); };
+      if (!has(sa, -1) || !has(sa, 1) || !(has(sb, 0) || (has(sb, -1) && has(sb, 1)))) continue;
+      std::vector<Plane> cons;
+      chord_constraints(*piece, sa, cons);
+      chord_constraints(*other, sb, cons);
+      const bool length = core::line_region_has_length(t.support, other->support, cons);
+      const bool said = chords_separated_by_edge(*piece, *other);
+      wrong += said && length;
+      decided += said;
+    }
+  return decided;
+}
+
+TEST(Chords, SeparatingEdgeShortcutAgreesWithTheExactTest) {
+  // p = (e0, e1, a) and q = (e1, e0, b) share the edge e0 e1, which crosses
+  // t's plane; coordinates near the grid's limit and on a small lattice
+  // (degenerate contacts: shared points, edges in t's plane, coplanarity).
+  for (const std::int64_t range : {std::int64_t{3}, kCoordLimit}) {
+    std::mt19937 rng(static_cast<std::uint32_t>(range));
+    std::uniform_int_distribution<std::int64_t> c(-range, range);
+    const auto pt = [&] { return IntPoint{c(rng), c(rng), c(rng)}; };
+    int wrong = 0, decided = 0, tried = 0;
+    for (int n = 0; n < 20000; ++n) {
+      const auto t = triangle(pt(), pt(), pt());
+      const IntPoint e0 = pt(), e1 = pt();
+      const auto p = triangle(e0, e1, pt());
+      const auto q = triangle(e1, e0, pt());
+      if (!t || !p || !q) continue;
+      ++tried;
+      decided += check_shortcut(*t, *p, *q, wrong);
+    }
+    EXPECT_EQ(wrong, 0) << "range " << range;
+    EXPECT_GT(decided, tried / 20) << "range " << range << ": the shortcut should decide touching pieces";
+  }
 }
 
 }  // namespace
