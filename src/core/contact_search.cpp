@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -122,12 +123,14 @@ class Search {
     const auto [ab, ae] = tree().leaf_slots(a);
     const auto [bb, be] = tree().leaf_slots(b);
     for (std::size_t i = ab; i < ae; ++i) {
-      if (!overlap(tree().box(i), tree().node(b))) continue;  // one test instead of one per triangle of b
-      for (std::size_t j = a == b ? i + 1 : bb; j < be; ++j) {
-        ++examined;
-        if (!overlap(tree().box(i), tree().box(j)) ||
-            !triangles_meet_improperly(tris_[tree().item(i)], tris_[tree().item(j)]))
-          continue;
+      const Box32 box = tree().box(i);
+      if (!overlap(box, tree().node(b))) continue;  // one test instead of one per triangle of b
+      const std::size_t from = a == b ? i + 1 : bb;
+      examined += be - std::min(be, from);
+      // Within one leaf only the slots after i.
+      for (unsigned m = tree().overlap_mask(b, box) & (~0u << (from - bb)); m != 0; m &= m - 1) {
+        const std::size_t j = bb + static_cast<std::size_t>(std::countr_zero(m));
+        if (!triangles_meet_improperly(tris_[tree().item(i)], tris_[tree().item(j)])) continue;
         if (found_.fetch_add(1) + 1 >= max_pairs_) return;
       }
     }

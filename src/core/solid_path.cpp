@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <deque>
 
 #include "core/pieces.hpp"
@@ -39,14 +40,14 @@ void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32
   const bool a_leaf = da == A.depth(), b_leaf = db == B.depth();
   if (a_leaf && b_leaf) {
     const auto [ab, ae] = A.leaf_slots(a);
-    const auto [bb, be] = B.leaf_slots(b);
+    const std::size_t bb = B.leaf_slots(b).first;
     for (std::size_t i = ab; i < ae; ++i) {
-      if (!overlap(A.box(i), B.node(b))) continue;
+      const Box32 box = A.box(i);
+      if (!overlap(box, B.node(b))) continue;
       const std::uint32_t ia = a_base + A.item(i);
-      for (std::size_t j = bb; j < be; ++j) {
-        const std::uint32_t ib = b_base + B.item(j);
-        if (overlap(A.box(i), B.box(j)) && triangles_meet(grid.corners[ia], grid.corners[ib]))
-          sink.local().emplace_back(ia, ib);
+      for (unsigned m = B.overlap_mask(b, box); m != 0; m &= m - 1) {
+        const std::uint32_t ib = b_base + B.item(bb + static_cast<std::size_t>(std::countr_zero(m)));
+        if (triangles_meet(grid.corners[ia], grid.corners[ib])) sink.local().emplace_back(ia, ib);
       }
     }
     return;

@@ -65,20 +65,24 @@ TriangleTree::TriangleTree(std::span<const Box32> boxes) {
   });
   sort_pairs(order);  // keys tie-broken by index: one order for any thread count
   item_.resize(n);
-  box_.resize(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      item_[i] = order[i].second;
-      box_[i] = boxes[order[i].second];
-    }
-  });
-  // Slots past the last triangle are empty boxes and meet nothing.
   leaves_ = std::bit_ceil(std::max<std::size_t>(1, (n + kLeaf - 1) / kLeaf));
   depth_ = std::countr_zero(leaves_);
   node_.assign(2 * leaves_ - 1, Box32{});
+  // Slots past the last triangle are empty boxes and meet nothing.
   const std::size_t first = first_leaf(), used = (n + kLeaf - 1) / kLeaf;
+  block_.resize(used);
   tbb::parallel_for(std::size_t{0}, used, [&](std::size_t k) {
-    for (std::size_t i = k * kLeaf, end = std::min(n, (k + 1) * kLeaf); i < end; ++i) node_[first + k].add(box_[i]);
+    LeafBlock& block = block_[k];
+    for (std::size_t s = 0; s < kLeaf; ++s) {
+      const std::size_t i = k * kLeaf + s;
+      const Box32 b = i < n ? boxes[order[i].second] : Box32{};
+      if (i < n) item_[i] = order[i].second;
+      for (int a = 0; a < 3; ++a) {
+        block.lo[a][s] = b.lo[a];
+        block.hi[a][s] = b.hi[a];
+      }
+      node_[first + k].add(b);
+    }
   });
   for (int d = depth_ - 1; d >= 0; --d) {
     const std::size_t level = (std::size_t{1} << d) - 1, count = std::size_t{1} << d;

@@ -6,8 +6,13 @@
 // exactly once. Used by the solid proof's self-contact search
 // (contact_search.hpp) and by the solid path's broad phase and traces
 // (solid_path.hpp).
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -63,7 +68,16 @@ class TriangleTree {
   bool empty() const { return item_.empty(); }
   /// The triangle in Morton slot `slot`, and its box.
   std::uint32_t item(std::size_t slot) const { return item_[slot]; }
-  const Box32& box(std::size_t slot) const { return box_[slot]; }
+  Box32 box(std::size_t slot) const {
+    const LeafBlock& b = block_[slot / kLeaf];
+    const std::size_t k = slot % kLeaf;
+    return {{b.lo[0][k], b.lo[1][k], b.lo[2][k]}, {b.hi[0][k], b.hi[1][k], b.hi[2][k]}};
+  }
+  /// Bit k set iff the box of the leaf's k-th slot meets `query` (slots past
+  /// the last triangle never do): all kLeaf tests at once, without branches.
+  unsigned overlap_mask(std::size_t leaf_node, const Box32& query) const;
+  /// The same without vector instructions (what overlap_mask is where SSE2 is missing).
+  unsigned overlap_mask_portable(std::size_t leaf_node, const Box32& query) const;
   /// Node n's box (heap order: children 2n + 1, 2n + 2; root 0).
   const Box32& node(std::size_t n) const { return node_[n]; }
   int depth() const { return depth_; }
@@ -85,21 +99,65 @@ class TriangleTree {
   void visit(std::size_t n, int depth, const Box32& query, F& f) const {
     if (!overlap(node_[n], query)) return;
     if (depth == depth_) {
-      const auto [b, e] = leaf_slots(n);
-      for (std::size_t s = b; s < e; ++s)
-        if (overlap(box_[s], query)) f(item_[s]);
+      const std::size_t first = (n - first_leaf()) * kLeaf;
+      for (unsigned m = overlap_mask(n, query); m != 0; m &= m - 1) f(item_[first + std::countr_zero(m)]);
       return;
     }
     visit(2 * n + 1, depth + 1, query, f);
     visit(2 * n + 2, depth + 1, query, f);
   }
 
+  /// The boxes of one leaf's slots, coordinate by coordinate (structure of
+  /// arrays), so that overlap_mask compares them in vector registers.
+  struct alignas(16) LeafBlock {
+    std::int32_t lo[3][kLeaf];
+    std::int32_t hi[3][kLeaf];
+  };
+
+  /// The slots of the leaf that hold triangles (the last leaf's empty slots
+  /// could meet a query clamped to the whole int32 range).
+  unsigned valid_slots(std::size_t leaf_node) const {
+    return (1u << std::min(kLeaf, size() - (leaf_node - first_leaf()) * kLeaf)) - 1;
+  }
+
   std::vector<std::uint32_t> item_;  ///< triangles in Morton order
-  std::vector<Box32> box_;           ///< their boxes, same order
+  std::vector<LeafBlock> block_;     ///< their boxes, kLeaf per block (empty boxes past the end)
   std::vector<Box32> node_;          ///< the tree's boxes, heap order
   std::size_t leaves_ = 1;
   int depth_ = 0;
 };
+
+inline unsigned TriangleTree::overlap_mask(std::size_t leaf_node, const Box32& q) const {
+#if defined(__SSE2__)
+  const LeafBlock& b = block_[leaf_node - first_leaf()];
+  static_assert(kLeaf == 8, "two 4-lane vectors per coordinate");
+  // A slot misses q iff on some axis lo > q.hi or q.lo > hi (signed compares).
+  __m128i miss0 = _mm_setzero_si128(), miss1 = _mm_setzero_si128();
+  for (int a = 0; a < 3; ++a) {
+    const __m128i qlo = _mm_set1_epi32(q.lo[a]), qhi = _mm_set1_epi32(q.hi[a]);
+    const auto lanes = [&](const std::int32_t* p) { return _mm_load_si128(reinterpret_cast<const __m128i*>(p)); };
+    miss0 = _mm_or_si128(miss0, _mm_or_si128(_mm_cmpgt_epi32(lanes(b.lo[a]), qhi), _mm_cmpgt_epi32(qlo, lanes(b.hi[a]))));
+    miss1 = _mm_or_si128(miss1,
+                         _mm_or_si128(_mm_cmpgt_epi32(lanes(b.lo[a] + 4), qhi), _mm_cmpgt_epi32(qlo, lanes(b.hi[a] + 4))));
+  }
+  const unsigned miss = static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(miss0))) |
+                        static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(miss1))) << 4;
+  return ~miss & valid_slots(leaf_node);
+#else
+  return overlap_mask_portable(leaf_node, q);
+#endif
+}
+
+inline unsigned TriangleTree::overlap_mask_portable(std::size_t leaf_node, const Box32& q) const {
+  const LeafBlock& b = block_[leaf_node - first_leaf()];
+  unsigned mask = 0;
+  for (std::size_t k = 0; k < kLeaf; ++k) {
+    bool meets = true;
+    for (int a = 0; a < 3; ++a) meets &= b.lo[a][k] <= q.hi[a] && q.lo[a] <= b.hi[a][k];
+    mask |= static_cast<unsigned>(meets) << k;
+  }
+  return mask & valid_slots(leaf_node);
+}
 
 /// Per operand: its triangles' ids [begin[o], begin[o + 1]) and their tree
 /// (item i is id begin[o] + i). The solid proof searches each operand's tree
