@@ -150,9 +150,9 @@ class VertexIndex {
         lo.z > b.hi.z)
       return;
     const std::array<std::int64_t, 3> c0 = cell_of(lo), c1 = cell_of(hi);
-    auto inside = [&](std::uint32_t i) {
+    auto inside = [&](std::uint32_t i) {  // no short-circuits: the outcomes follow no pattern
       const Vec3d& p = pos_[i];
-      return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z;
+      return (p.x >= lo.x) & (p.x <= hi.x) & (p.y >= lo.y) & (p.y <= hi.y) & (p.z >= lo.z) & (p.z <= hi.z);
     };
     for (std::int64_t x = c0[0]; x <= c1[0]; ++x)
       for (std::int64_t y = c0[1]; y <= c1[1]; ++y)
