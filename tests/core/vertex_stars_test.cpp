@@ -159,5 +159,20 @@ TEST(VertexStars, CertificatesNeverHideAContact) {
   EXPECT_GT(contacts_total, 10u);
 }
 
+TEST(VertexStars, CertifiedTrianglesStillMeetTheirNonNeighbours) {
+  // Two clean spheres, one operand: every star is certified, so the search
+  // skips every neighbour pair, yet the spheres cross each other and every
+  // crossing pair must still be found.
+  std::vector<Tri> tris = on_grid(icosphere({0, 0, 0}, 1.0, 3), 4000);
+  const std::vector<Tri> other = on_grid(icosphere({0.6, 0.3, 0.2}, 0.8, 3), 4000);
+  tris.insert(tris.end(), other.begin(), other.end());
+  const std::vector<core::ContactTriangle> plain = with_ids(tris);
+  const std::vector<core::ContactTriangle> certs = certified(plain);
+  ASSERT_EQ(certified_corners(certs), 3 * certs.size());
+  const std::size_t expected = all_pairs_count(plain);
+  EXPECT_GT(expected, 50u);
+  EXPECT_EQ(core::find_contacts(certs, 1u << 30).pairs, expected);
+}
+
 }  // namespace
 }  // namespace ember::test
