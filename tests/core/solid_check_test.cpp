@@ -201,6 +201,61 @@ TEST(TriangleContact, AnyContactOfDifferentOperandsMatchesRationalOracle) {
   EXPECT_LT(met, tested - 2000);
 }
 
+/// The exact side of p against the plane of t, in GMP integers.
+int gmp_side(const Tri& t, const IntPoint& p) {
+  const auto z = [](std::int64_t v) { return mpz_class(static_cast<long>(v)); };
+  const mpz_class ux = z(t[1].x) - z(t[0].x), uy = z(t[1].y) - z(t[0].y), uz = z(t[1].z) - z(t[0].z);
+  const mpz_class vx = z(t[2].x) - z(t[0].x), vy = z(t[2].y) - z(t[0].y), vz = z(t[2].z) - z(t[0].z);
+  const mpz_class d = (uy * vz - uz * vy) * (z(p.x) - z(t[0].x)) + (uz * vx - ux * vz) * (z(p.y) - z(t[0].y)) +
+                      (ux * vy - uy * vx) * (z(p.z) - z(t[0].z));
+  return sgn(d);
+}
+
+TEST(TriangleContact, BesidePlaneFilterIsNeverWrong) {
+  // surely_beside_plane may only answer true when all three corners are
+  // strictly on one side exactly; at full-range coordinates (normals near
+  // 2^53, the products past double's precision) and on a lattice where
+  // corners on the plane abound.
+  for (const std::int64_t range : {std::int64_t{2}, kCoordLimit}) {
+    std::mt19937 rng(static_cast<std::uint32_t>(range) + 3);
+    std::uniform_int_distribution<std::int64_t> c(-range, range);
+    const auto pt = [&] { return IntPoint{c(rng), c(rng), c(rng)}; };
+    int said = 0, exact_apart = 0, wrong = 0;
+    for (int n = 0; n < 30000; ++n) {
+      const Tri a{{pt(), pt(), pt()}}, b{{pt(), pt(), pt()}};
+      const std::array<std::int64_t, 3> na = grid_normal(a[0], a[1], a[2]);
+      if (na == std::array<std::int64_t, 3>{} || grid_normal(b[0], b[1], b[2]) == std::array<std::int64_t, 3>{}) continue;
+      const int s0 = gmp_side(a, b[0]), s1 = gmp_side(a, b[1]), s2 = gmp_side(a, b[2]);
+      const bool apart = s0 != 0 && s0 == s1 && s1 == s2;
+      const bool filter = core::surely_beside_plane(a, na, b);
+      said += filter;
+      exact_apart += apart;
+      wrong += filter && !apart;
+      if (filter) EXPECT_FALSE(core::triangles_meet(a, b));
+    }
+    EXPECT_EQ(wrong, 0) << "range " << range;
+    EXPECT_GT(said, exact_apart * 9 / 10) << "range " << range << ": the filter should decide most apart pairs";
+  }
+  // A corner exactly on a's plane (a0 + d1 + d2) far from the origin, where
+  // the double products round by far more than one unit: never "beside".
+  std::mt19937 rng(17);
+  std::uniform_int_distribution<std::int64_t> at(-(1 << 24), 1 << 24), d(-(1 << 23), 1 << 23);
+  int on_plane_cases = 0;
+  for (int n = 0; n < 20000; ++n) {
+    const IntPoint a0{at(rng), at(rng), at(rng)}, d1{d(rng), d(rng), d(rng)}, d2{d(rng), d(rng), d(rng)};
+    const Tri a{{a0, {a0.x + d1.x, a0.y + d1.y, a0.z + d1.z}, {a0.x + d2.x, a0.y + d2.y, a0.z + d2.z}}};
+    const IntPoint on{a0.x + d1.x + d2.x, a0.y + d1.y + d2.y, a0.z + d1.z + d2.z};
+    const Tri b{{on, {at(rng), at(rng), at(rng)}, {at(rng), at(rng), at(rng)}}};
+    const std::array<std::int64_t, 3> na = grid_normal(a[0], a[1], a[2]);
+    if (na == std::array<std::int64_t, 3>{}) continue;
+    ASSERT_EQ(gmp_side(a, on), 0);
+    if (gmp_side(a, b[1]) != gmp_side(a, b[2])) continue;
+    ++on_plane_cases;
+    EXPECT_FALSE(core::surely_beside_plane(a, na, b));
+  }
+  EXPECT_GT(on_plane_cases, 5000);
+}
+
 TEST(TriangleContact, RandomFullRangeTrianglesMatchRationalOracle) {
   // The same lattice stretched over the whole grid, -2^25 .. 2^25 - 1: corner
   // differences near 2^26 and normal components near 2^53, the limits of the
