@@ -7,15 +7,15 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
-#include <algorithm>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
+#include <algorithm>
 #include <atomic>
 #include <bit>
-#include <optional>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/triangle_tree.hpp"

@@ -88,10 +88,10 @@ bool triangles_meet_improperly(const std::array<IntPoint, 3>& a, const std::arra
 /// The closed triangles have a common point, any (shared vertices and
 /// touching included): the contact test of triangles of different operands.
 bool triangles_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b);
-/// A floating-point filter before triangles_meet: true only if every corner
-/// of `b` lies strictly on one side of the plane of `a` (normal `na` =
-/// grid_normal of a), so the two cannot meet. False whenever it is unsure.
-bool surely_beside_plane(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
-                         const std::array<IntPoint, 3>& b);
+/// Every corner of `b` lies strictly on one side of the plane of `a` (normal
+/// `na` = grid_normal of a), so the two cannot meet: the cheap rejection
+/// before triangles_meet. Exact.
+bool beside_plane(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
+                  const std::array<IntPoint, 3>& b);
 
 }  // namespace ember::core

@@ -48,13 +48,13 @@ void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32
       const std::array<IntPoint, 3>& ta = grid.corners[ia];
       unsigned m = B.overlap_mask(b, box);
       if (m == 0) continue;
-      // Most box pairs have one triangle wholly beside the other's plane: a
-      // double filter says so without the exact test's set-up.
+      // Most box pairs have one triangle wholly beside the other's plane,
+      // which three exact dot products tell without the full test's set-up.
       const std::array<std::int64_t, 3> na = grid_normal(ta[0], ta[1], ta[2]);
       for (; m != 0; m &= m - 1) {
         const std::uint32_t ib = b_base + B.item(bb + static_cast<std::size_t>(std::countr_zero(m)));
         const std::array<IntPoint, 3>& tb = grid.corners[ib];
-        if (!surely_beside_plane(ta, na, tb) && triangles_meet(ta, tb)) sink.local().emplace_back(ia, ib);
+        if (!beside_plane(ta, na, tb) && triangles_meet(ta, tb)) sink.local().emplace_back(ia, ib);
       }
     }
     return;

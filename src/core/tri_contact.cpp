@@ -3,7 +3,6 @@
 //   orient3d: 2x2 minors < 2^53, terms < 2^79, sum < 2^81  -> __int128;
 //   orient2d: products < 2^52, difference < 2^53           -> int64;
 //   chord directions |s| * |d|: < 2^81 * 2^26 * 2        -> __int128.
-#include <cmath>
 #include <cstdint>
 
 #include "core/solid_check.hpp"
@@ -170,20 +169,14 @@ bool triangles_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint,
   return triangles_meet_improperly(contact_triangle(a, {0, 1, 2}), contact_triangle(b, {3, 4, 5}));
 }
 
-bool surely_beside_plane(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
-                         const std::array<IntPoint, 3>& b) {
-  // n . (p - a0) in double: |n_k| < 2^53 and the differences (< 2^27) are
-  // exact, each product rounds by at most 2^-53 of itself and the two sums
-  // by 2^-53 of their (smaller) results, so the error is below 2^-51 of the
-  // sum of the terms' magnitudes; 2^-48 of it leaves a margin.
-  const double n[3] = {static_cast<double>(na[0]), static_cast<double>(na[1]), static_cast<double>(na[2])};
+bool beside_plane(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
+                  const std::array<IntPoint, 3>& b) {
   int above = 0, below = 0;
   for (const IntPoint& p : b) {
-    const double t0 = n[0] * static_cast<double>(p.x - a[0].x), t1 = n[1] * static_cast<double>(p.y - a[0].y),
-                 t2 = n[2] * static_cast<double>(p.z - a[0].z);
-    const double value = t0 + t1 + t2, bound = 0x1p-48 * (std::fabs(t0) + std::fabs(t1) + std::fabs(t2));
-    above += value > bound;
-    below += value < -bound;
+    // The exact side (the bit budget of side() above: < 2^82).
+    const i128 v = i128(na[0]) * (p.x - a[0].x) + i128(na[1]) * (p.y - a[0].y) + i128(na[2]) * (p.z - a[0].z);
+    above += v > 0;
+    below += v < 0;
   }
   return above == 3 || below == 3;
 }
