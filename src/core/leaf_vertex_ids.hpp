@@ -1,0 +1,86 @@
+#pragma once
+// The vertex ids of the triangles in each leaf of a TriangleTree, stored
+// like the leaf's boxes (coordinate by coordinate), so that the solid
+// proof's leaf pairs find a triangle's neighbours among eight slots at once
+// (contact_search.cpp).
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/solid_check.hpp"
+#include "core/triangle_tree.hpp"
+
+namespace ember::core {
+
+/// The vertex ids of the triangles in each tree leaf, coordinate by
+/// coordinate like the leaf's boxes, to find a triangle's neighbours in a
+/// leaf eight at a time. Empty slots hold an id no vertex has.
+class LeafVertexIds {
+ public:
+  LeafVertexIds(const TriangleTree& tree, std::span<const ContactTriangle> tris) : first_leaf_(tree.first_leaf()) {
+    constexpr std::size_t L = TriangleTree::kLeaf;
+    block_.resize((tree.size() + L - 1) / L);
+    tbb::parallel_for(std::size_t{0}, block_.size(), [&](std::size_t k) {
+      for (std::size_t s = 0; s < L; ++s)
+        for (int c = 0; c < 3; ++c)
+          block_[k].id[c][s] = k * L + s < tree.size() ? tris[tree.item(k * L + s)].id[c] : kNoVertex;
+    });
+  }
+
+  /// Bit k set iff slot k of the leaf shares one or two vertices with a
+  /// triangle whose vertex ids are `ids` (three shared: the same triangle).
+  unsigned neighbour_mask(std::size_t leaf_node, const std::array<std::uint32_t, 3>& ids) const {
+#if defined(__SSE2__)
+    const Block& b = block_[leaf_node - first_leaf_];
+    static_assert(TriangleTree::kLeaf == 8, "two 4-lane vectors per corner");
+    // Per slot minus the number of shared vertices: each match adds -1.
+    __m128i count0 = _mm_setzero_si128(), count1 = _mm_setzero_si128();
+    for (int c = 0; c < 3; ++c) {
+      const __m128i lo = _mm_load_si128(reinterpret_cast<const __m128i*>(b.id[c]));
+      const __m128i hi = _mm_load_si128(reinterpret_cast<const __m128i*>(b.id[c] + 4));
+      for (const std::uint32_t v : ids) {
+        const __m128i vv = _mm_set1_epi32(static_cast<int>(v));
+        count0 = _mm_add_epi32(count0, _mm_cmpeq_epi32(lo, vv));
+        count1 = _mm_add_epi32(count1, _mm_cmpeq_epi32(hi, vv));
+      }
+    }
+    const auto one_or_two = [](__m128i count) {
+      const __m128i m = _mm_or_si128(_mm_cmpeq_epi32(count, _mm_set1_epi32(-1)), _mm_cmpeq_epi32(count, _mm_set1_epi32(-2)));
+      return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(m)));
+    };
+    return one_or_two(count0) | one_or_two(count1) << 4;
+#else
+    return neighbour_mask_portable(leaf_node, ids);
+#endif
+  }
+
+  /// The same without vector instructions (what neighbour_mask is where SSE2 is missing).
+  unsigned neighbour_mask_portable(std::size_t leaf_node, const std::array<std::uint32_t, 3>& ids) const {
+    const Block& b = block_[leaf_node - first_leaf_];
+    unsigned mask = 0;
+    for (std::size_t k = 0; k < TriangleTree::kLeaf; ++k) {
+      int shared = 0;
+      for (int c = 0; c < 3; ++c)
+        for (const std::uint32_t v : ids) shared += b.id[c][k] == v;
+      mask |= static_cast<unsigned>(shared == 1 || shared == 2) << k;
+    }
+    return mask;
+  }
+
+ private:
+  static constexpr std::uint32_t kNoVertex = UINT32_MAX;
+  struct alignas(16) Block {
+    std::uint32_t id[3][TriangleTree::kLeaf];
+  };
+  std::size_t first_leaf_;
+  std::vector<Block> block_;
+};
+
+}  // namespace ember::core
