@@ -7,9 +7,6 @@
 
 namespace ember::core {
 
-static_assert(kCoordLimit <= (std::int64_t{1} << 25),
-              "edge blocking: grid normals < 2^53 times differences < 2^27, three terms < 2^82 in __int128");
-
 std::size_t SolidHandover::hash(const IntPoint& a, const IntPoint& b) {
   std::uint64_t h = 0;
   for (const std::int64_t v : {a.x, a.y, a.z, b.x, b.y, b.z}) h = (h ^ static_cast<std::uint64_t>(v)) * 0x9e3779b97f4a7c15ULL;
@@ -49,13 +46,9 @@ bool SolidHandover::blocked(int k) {
   // Not manifold, or a partner of t whose plane holds the edge's line.
   bool block = neighbours_[k] == kNoNeighbor;
   for (std::size_t i = 0; i < partners_.size() && !block; ++i) {
-    // n . (p - q0) in 128 bits (grid normal < 2^53, differences < 2^27).
     const std::array<IntPoint, 3>& q = grid_->corners[partners_[i]];
     const std::array<std::int64_t, 3> n = grid_normal(q[0], q[1], q[2]);
-    const auto on_plane = [&](const IntPoint& p) {
-      return __int128{n[0]} * (p.x - q[0].x) + __int128{n[1]} * (p.y - q[0].y) + __int128{n[2]} * (p.z - q[0].z) == 0;
-    };
-    block = on_plane(a) && on_plane(b);
+    block = grid_side(q[0], n, a) == 0 && grid_side(q[0], n, b) == 0;
   }
   blocked_[k] = block ? 1 : 0;
   return block;

@@ -35,10 +35,7 @@ i128 orient3d(const IntPoint& a, const IntPoint& b, const IntPoint& c, const Int
 /// orient3d(t[0], t[1], t[2], p) = n . (p - t[0]) with the stored normal n:
 /// the same value (n has components < 2^53, differences < 2^27, so each
 /// product < 2^80 and the sum < 2^82) for three multiplications instead of nine.
-i128 side(const ContactTriangle& t, const IntPoint& p) {
-  return i128(t.n[0]) * (p.x - t.p[0].x) + i128(t.n[1]) * (p.y - t.p[0].y) + i128(t.n[2]) * (p.z - t.p[0].z);
-}
-static_assert(53 + (kDiffBits + 1) + 2 <= 126, "side: normal < 2^53 times difference < 2^27, three terms < 2^82");
+i128 side(const ContactTriangle& t, const IntPoint& p) { return grid_side(t.p[0], t.n, p); }
 
 /// A 2D view of a plane: coordinates (u, v) after dropping axis `drop`.
 struct Projection {
@@ -173,8 +170,7 @@ bool beside_plane(const std::array<IntPoint, 3>& a, const std::array<std::int64_
                   const std::array<IntPoint, 3>& b) {
   int above = 0, below = 0;
   for (const IntPoint& p : b) {
-    // The exact side (the bit budget of side() above: < 2^82).
-    const i128 v = i128(na[0]) * (p.x - a[0].x) + i128(na[1]) * (p.y - a[0].y) + i128(na[2]) * (p.z - a[0].z);
+    const i128 v = grid_side(a[0], na, p);
     above += v > 0;
     below += v < 0;
   }

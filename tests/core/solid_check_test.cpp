@@ -230,7 +230,9 @@ TEST(TriangleContact, BesidePlaneMatchesTheGmpSides) {
       ++tested;
       apart += want;
       ASSERT_EQ(core::beside_plane(a, na, b), want) << "range " << range;
-      if (want) EXPECT_FALSE(core::triangles_meet(a, b));
+      if (want) {
+        EXPECT_FALSE(core::triangles_meet(a, b));
+      }
     }
     EXPECT_GT(apart, tested / 10) << "range " << range;
     EXPECT_LT(apart, tested - tested / 10) << "range " << range;

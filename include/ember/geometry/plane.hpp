@@ -86,6 +86,16 @@ inline std::array<std::int64_t, 3> grid_normal(const IntPoint& p0, const IntPoin
   return {uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
 }
 
+/// n . (p - origin) exactly, for a grid normal n (grid_normal of a triangle
+/// with corner `origin`) and a grid point p: the side of p against that
+/// triangle's plane (sign) in plain __int128. Differences are at most 2^26,
+/// so each product is below 2^53 * 2^27 = 2^80 and the sum below 2^82.
+inline __int128 grid_side(const IntPoint& origin, const std::array<std::int64_t, 3>& n, const IntPoint& p) {
+  static_assert(kCoordLimit <= (std::int64_t{1} << 25) && 53 + 27 + 2 < 127,
+                "grid side: normal < 2^53 times difference < 2^27, three terms < 2^82");
+  return __int128{n[0]} * (p.x - origin.x) + __int128{n[1]} * (p.y - origin.y) + __int128{n[2]} * (p.z - origin.z);
+}
+
 /// Axis (0, 1, 2) of the largest |normal component|; ties go to the lowest index.
 inline int dominant_axis(const Plane& p) {
   const std::int64_t ax = p.a.abs().raw(), ay = p.b.abs().raw(), az = p.c.abs().raw();
