@@ -71,19 +71,32 @@ void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& s
   pieces.push_back({std::move(pos)});
 }
 
-/// Classifies o's vertices against a plane; false if all lie strictly on
-/// one side (o cannot meet the plane).
-bool touches_plane(const Polygon& o, const Plane& plane, const PlaneApprox& approx, std::vector<std::int8_t>& signs) {
+namespace {
+
+/// The signs of side(x) for the points into `signs`; false if all are
+/// strictly positive or all strictly negative.
+template <typename Points, typename Side>
+bool signs_touch(const Points& points, Side&& side, std::vector<std::int8_t>& signs) {
   bool neg = false, pos = false, zero = false;
-  signs.resize(o.vertices.size());
-  for (std::size_t v = 0; v < o.vertices.size(); ++v) {
-    const int s = classify(o.vertices[v], plane, approx);
+  signs.resize(points.size());
+  for (std::size_t v = 0; v < points.size(); ++v) {
+    const int s = side(points[v]);
     signs[v] = static_cast<std::int8_t>(s);
     zero |= s == 0;
     neg |= s < 0;
     pos |= s > 0;
   }
   return zero || (neg && pos);
+}
+
+}  // namespace
+
+bool touches_plane(const Polygon& o, const Plane& plane, const PlaneApprox& approx, std::vector<std::int8_t>& signs) {
+  return signs_touch(o.vertices, [&](const Point& x) { return classify(x, plane, approx); }, signs);
+}
+
+bool touches_plane(const std::array<IntPoint, 3>& corners, const Plane& plane, std::vector<std::int8_t>& signs) {
+  return signs_touch(corners, [&](const IntPoint& x) { return classify(x, plane); }, signs);
 }
 
 

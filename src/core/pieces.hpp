@@ -37,6 +37,9 @@ void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& s
 /// Classifies o's vertices against a plane into `signs`; false if all lie
 /// strictly on one side (o cannot meet the plane).
 bool touches_plane(const Polygon& o, const Plane& plane, const PlaneApprox& approx, std::vector<std::int8_t>& signs);
+/// The same for a triangle's grid corners (its built polygon's vertices, in
+/// order), exactly in 82-bit integers.
+bool touches_plane(const std::array<IntPoint, 3>& corners, const Plane& plane, std::vector<std::int8_t>& signs);
 
 /// One polygon p of operand `operand` met by the last segment `seg` of a
 /// classification path, which ends at x on plane S (x strictly inside a

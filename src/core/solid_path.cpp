@@ -173,21 +173,6 @@ bool apart(const PieceBox& a, const PieceBox& b) {
   return false;
 }
 
-/// A partner's corners (its built polygon's vertices, in order) against t's
-/// plane, exactly in 82-bit integers; false if all lie strictly on one side.
-bool corners_touch_plane(const std::array<IntPoint, 3>& c, const Plane& plane, std::vector<std::int8_t>& signs) {
-  signs.resize(3);
-  bool neg = false, pos = false, zero = false;
-  for (int v = 0; v < 3; ++v) {
-    const int s = classify(c[v], plane);
-    signs[v] = static_cast<std::int8_t>(s);
-    zero |= s == 0;
-    neg |= s < 0;
-    pos |= s > 0;
-  }
-  return zero || (neg && pos);
-}
-
 /// Scratch of the polygon-local BSP of one triangle.
 struct CutScratch {
   std::vector<PieceBox> boxes;  ///< per piece
@@ -234,7 +219,7 @@ bool cut_triangle(const Polygon& t, std::uint32_t id, PolygonCache& cache, CutSc
   for (const Piece& p : cs.pieces) cs.boxes.push_back(piece_box(p.poly));
   for (const std::uint32_t q : cs.partners) {
     const Polygon& o = cache.get(q);
-    if (coplanar(t.support, o.support) || !corners_touch_plane(cache.corners(q), t.support, cs.other_signs)) continue;
+    if (coplanar(t.support, o.support) || !touches_plane(cache.corners(q), t.support, cs.other_signs)) continue;
     const PieceBox ob = piece_box(o);
     const std::size_t n = cs.pieces.size();
     for (std::size_t i = 0; i < n; ++i) {
