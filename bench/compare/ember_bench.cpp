@@ -110,7 +110,8 @@ int prepare(int argc, char** argv) {
 }
 
 /// The median of each phase of the timed runs, as JSON members
-/// (,"setup_ms":..,"proof_ms":..,"solve_ms":..,"output_ms":..).
+/// (,"setup_ms":..,"proof_ms":..,"solve_ms":..,"output_ms":.., then the
+/// output stage's steps "weld_ms", "tjunction_ms", "regions_ms", "triangulate_ms").
 std::string phase_medians(std::span<const ember::BooleanStats> runs) {
   const auto median = [&](double ember::BooleanStats::*field) {
     std::vector<double> v;
@@ -121,7 +122,11 @@ std::string phase_medians(std::span<const ember::BooleanStats> runs) {
   for (const auto& [name, field] : {std::pair{"setup_ms", &ember::BooleanStats::setup_ms},
                                     std::pair{"proof_ms", &ember::BooleanStats::proof_ms},
                                     std::pair{"solve_ms", &ember::BooleanStats::solve_ms},
-                                    std::pair{"output_ms", &ember::BooleanStats::output_ms}})
+                                    std::pair{"output_ms", &ember::BooleanStats::output_ms},
+                                    std::pair{"weld_ms", &ember::BooleanStats::weld_ms},
+                                    std::pair{"tjunction_ms", &ember::BooleanStats::tjunction_ms},
+                                    std::pair{"regions_ms", &ember::BooleanStats::regions_ms},
+                                    std::pair{"triangulate_ms", &ember::BooleanStats::triangulate_ms}})
     out += std::string(",\"") + name + "\":" + bench::json_number(median(field));
   return out;
 }

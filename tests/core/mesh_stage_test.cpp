@@ -150,6 +150,26 @@ TEST(MeshStage, DiagonalThroughAUsedVertexIsSplit) {
   EXPECT_EQ(two.size(), 6u);
 }
 
+TEST(MeshStage, DiagonalThroughACornerOfTheSameTrianglesIsSplit) {
+  // A square like the one above (twice as large) on the diagonal 0-2, plus a third triangle
+  // 4-5-6 of the same list whose corner 4 is the diagonal's midpoint: a
+  // corner of the list's own triangles is a vertex like any other.
+  const OutputVertices verts =
+      grid_vertices({{0, 0, 0}, {8, 0, 0}, {8, 8, 0}, {0, 8, 0}, {4, 4, 0}, {6, 3, 0}, {6, 5, 0}});
+  std::vector<std::uint32_t> all{0, 1, 2, 3, 4, 5, 6};
+  const VertexIndex index(verts.rounded, all, 1.0);
+  const Plane up = axis_plane(2, 0);
+  const std::vector<char> used(7, 1);
+  std::vector<std::array<std::uint32_t, 3>> tris{{0, 1, 2}, {0, 2, 3}, {4, 5, 6}};
+  EXPECT_EQ(split_diagonals(up, verts, index, used, tris), 1u);
+  EXPECT_EQ(tris.size(), 5u);
+  // Without the corner's triangle nothing touches the diagonal.
+  std::vector<std::array<std::uint32_t, 3>> square{{0, 1, 2}, {0, 2, 3}};
+  const std::vector<char> only_square{1, 1, 1, 1, 0, 1, 1};
+  EXPECT_EQ(split_diagonals(up, verts, index, only_square, square), 0u);
+  EXPECT_EQ(square.size(), 2u);
+}
+
 TEST(MeshStage, HolesThatHideEachOtherAreBridgedInOrder) {
   // A square region in z = 0 with five square holes: the central one (A)
   // sees no outer corner past the four others, which sit on its lines of

@@ -10,7 +10,6 @@
 // an output edge. Triangles of positive area stay positive: the new corner is
 // strictly inside the old edge and the opposite corner is off its line.
 #include <algorithm>
-#include <map>
 #include <utility>
 
 #include "core/mesh/mesh_output.hpp"
@@ -74,24 +73,40 @@ std::size_t split_diagonals(const Plane& plane, const OutputVertices& verts, con
   // New edges from a split point to an opposite corner are diagonals too;
   // repeat until a pass splits nothing (each split adds a vertex to the
   // triangulation, so this ends).
+  struct Directed {
+    std::uint32_t x, y;  ///< the edge x -> y
+    std::uint32_t t;     ///< its triangle
+    int k;               ///< its corner in t (the edge runs from corner k)
+    bool operator<(const Directed& o) const { return x != o.x ? x < o.x : y < o.y; }
+  };
+  std::vector<Directed> directed;
   for (bool changed = true; changed;) {
     changed = false;
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::size_t, int>> directed;
+    directed.clear();
     for (std::size_t t = 0; t < tris.size(); ++t)
-      for (int k = 0; k < 3; ++k) directed[{tris[t][k], tris[t][(k + 1) % 3]}] = {t, k};
-    for (const auto& [edge, where] : directed) {
-      const auto [x, y] = edge;
-      if (x > y) continue;  // each diagonal once, from its smaller id
-      const auto back = directed.find({y, x});
-      if (back == directed.end()) continue;  // a boundary edge
-      const std::vector<std::uint32_t> between = inside_segment(x, y, plane, verts, index, used);
+      for (int k = 0; k < 3; ++k)
+        directed.push_back({tris[t][k], tris[t][(k + 1) % 3], static_cast<std::uint32_t>(t), k});
+    // A valid triangulation uses each directed edge once; were one repeated,
+    // its last use stands for it (as a map assigned in this order would keep).
+    std::stable_sort(directed.begin(), directed.end());
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < directed.size(); ++i) {
+      const bool last = i + 1 == directed.size() || directed[i] < directed[i + 1];
+      if (last) directed[kept++] = directed[i];
+    }
+    directed.resize(kept);
+    for (const Directed& e : directed) {
+      if (e.x > e.y) continue;  // each diagonal once, from its smaller id
+      const auto back = std::lower_bound(directed.begin(), directed.end(), Directed{e.y, e.x, 0, 0});
+      if (back == directed.end() || back->x != e.y || back->y != e.x) continue;  // a boundary edge
+      const std::vector<std::uint32_t> between = inside_segment(e.x, e.y, plane, verts, index, used);
       if (between.empty()) continue;
-      split_triangle(tris, where.first, where.second, between);
+      split_triangle(tris, e.t, e.k, between);
       const std::vector<std::uint32_t> reversed(between.rbegin(), between.rend());
-      split_triangle(tris, back->second.first, back->second.second, reversed);
+      split_triangle(tris, back->t, back->k, reversed);
       inserted += between.size();
       changed = true;
-      break;  // the edge map is stale now
+      break;  // the edge list is stale now
     }
   }
   return inserted;

@@ -38,6 +38,7 @@ double mean_edge_length(std::span<const OutputPolygon> polys, const OutputVertic
   std::size_t count = 0;
   const std::size_t stride = std::max<std::size_t>(1, polys.size() / 4096);
   for (std::size_t p = 0; p < polys.size(); p += stride) {
+    if (polys[p].settled) continue;
     const auto c = verts.corners[p];
     for (std::size_t k = 0; k < c.size(); ++k) {
       const Vec3d& a = verts.rounded[c[k]];
