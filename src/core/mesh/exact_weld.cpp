@@ -1,12 +1,14 @@
 // Step 1 of the mesh stage: one id per distinct exact point.
 //
-// Equal exact points round to equal doubles, so sorting the corners by their
-// rounded position brings every class of equal points into one run; distinct
-// points that happen to round alike are then told apart exactly (same_point).
-// Most corners are grid points (input vertices) stored as the meeting point of
-// three planes; as_grid_point recognizes them exactly, so they are rounded and
-// compared as integers and stored with w = 1, which keeps the later predicates
-// on the filter-or-integer fast paths.
+// Equal exact points have equal keys, so sorting the corners by a hash of
+// their key brings every class of equal points into one run; distinct points
+// whose hashes collide are then told apart exactly. The key is exact for grid
+// points: most corners are grid points (input vertices) stored as the meeting
+// point of three planes; as_grid_point recognizes them exactly, so they are
+// hashed, rounded and compared as integers and stored with w = 1, which keeps
+// the later predicates on the filter-or-integer fast paths. Other points are
+// keyed by their correctly rounded position (equal points round alike) and
+// compared exactly (same_point) within a run.
 // Ids are numbered by first appearance in output order, so they do not depend
 // on the sort or on scheduling.
 //
@@ -17,32 +19,34 @@
 // (about six times). Only the other corners are sorted one by one. The ids
 // come out the same either way: an item stands for the smallest corner it
 // covers, and a class's id is ordered by its smallest corner.
+//
+// The sort is a radix sort of (32-bit hash, item) pairs (sort_pairs): a
+// comparison sort of the positions cost ~17 compare-and-move steps per item.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <bit>
 #include <numeric>
 #include <optional>
-#include <tuple>
 
 #include "core/mesh/mesh_output.hpp"
+#include "core/sort_pairs.hpp"
 #include "ember/geometry/exact_order.hpp"
 
 namespace ember::core {
 
 namespace {
 
-/// A sort key: the rounded position of an item and the smallest corner it stands for.
-struct ItemKey {
-  double x, y, z;
-  std::uint32_t corner;
-  std::uint32_t item;
-  friend bool operator<(const ItemKey& a, const ItemKey& b) {
-    return std::tie(a.x, a.y, a.z, a.corner) < std::tie(b.x, b.y, b.z, b.corner);
-  }
-  bool same_position(const ItemKey& o) const { return x == o.x && y == o.y && z == o.z; }
-};
+/// A 32-bit hash of a key: its three 64-bit words mixed (the key is the
+/// grid point for grid items, the rounded position's bits otherwise). Equal
+/// keys hash alike; collisions only cost an exact comparison.
+std::uint32_t hash_key(std::uint64_t x, std::uint64_t y, std::uint64_t z) {
+  std::uint64_t h = x * 0x9E3779B97F4A7C15ull;
+  h = (h ^ (h >> 29) ^ y) * 0xBF58476D1CE4E5B9ull;
+  h = (h ^ (h >> 32) ^ z) * 0x94D049BB133111EBull;
+  return static_cast<std::uint32_t>(h >> 32);
+}
 
 /// What an item is: a grid point (an input vertex, or a built corner that is
 /// one), or otherwise built corner k of polygon `poly`.
@@ -54,13 +58,15 @@ struct Item {
   bool is_grid = false;
 };
 
-constexpr std::uint32_t kNone = UINT32_MAX;
-
 /// Per polygon, where its corners are; per input vertex id, its first corner.
 struct CornerLayout {
   std::vector<std::uint32_t> built_before;  ///< per polygon: built corners of earlier polygons (+ total)
-  std::vector<std::uint32_t> first_corner;  ///< per global input vertex id: smallest corner on it, or kNone
+  /// Per global input vertex id: its smallest corner c and that corner's
+  /// polygon p as c << 32 | p (a minimum by corner), or kNoCorner.
+  std::vector<std::uint64_t> first_corner;
 };
+
+constexpr std::uint64_t kNoCorner = UINT64_MAX;
 
 /// Whether p's corners are folded into their input vertices' items.
 bool folded(const OutputPolygon& p, const InputTopology* ids) { return ids && unbuilt(p); }
@@ -75,12 +81,13 @@ CornerLayout lay_out_corners(std::span<const OutputPolygon> polys, const Cycles&
   for (std::size_t i = 0; i < polys.size(); ++i)
     l.built_before[i + 1] = l.built_before[i] + (folded(polys[i], ids) ? 0 : static_cast<std::uint32_t>(corner_count(polys[i])));
   if (!ids) return l;
-  l.first_corner.assign(ids->operand_base.back(), kNone);
+  l.first_corner.assign(ids->operand_base.back(), kNoCorner);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 1024), [&](const auto& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       if (!folded(polys[i], ids)) continue;
       for (std::uint32_t k = 0; k < 3; ++k)
-        atomic_min(l.first_corner[input_vertex(polys[i], k, *ids)], corners.offsets[i] + k);
+        atomic_min(l.first_corner[input_vertex(polys[i], k, *ids)],
+                   std::uint64_t{corners.offsets[i] + k} << 32 | static_cast<std::uint32_t>(i));
     }
   });
   return l;
@@ -98,7 +105,7 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
   for (std::size_t i = 0; i < polys.size(); ++i)
     corners.offsets[i + 1] = corners.offsets[i] + static_cast<std::uint32_t>(corner_count(polys[i]));
   const std::size_t n = corners.offsets.back();
-  CornerLayout layout = lay_out_corners(polys, corners, ids);
+  const CornerLayout layout = lay_out_corners(polys, corners, ids);
 
   // Items: the built corners (in output order), then the input vertices in
   // use, numbered in id order (a scan).
@@ -106,13 +113,19 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
   std::uint32_t items = layout.built_before.back();
   for (std::uint32_t v = 0; v < layout.first_corner.size(); ++v) {
     item_of_vertex[v] = items;
-    items += layout.first_corner[v] != kNone;
+    items += layout.first_corner[v] != kNoCorner;
   }
   std::vector<Item> item(items);
-  std::vector<ItemKey> keys(items);
-  auto key_of = [&](std::uint32_t i, std::uint32_t corner, const std::optional<IntPoint>& g, const Point* exact) {
+  std::vector<Vec3d> rounded(items);  // per item: its rounded position
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> keyed(items);  // (hash of the key, item)
+  auto set_key = [&](std::uint32_t i, const std::optional<IntPoint>& g, const Point* exact) {
     const Vec3d x = g ? q.dequantize(*g) : q.dequantize(*exact);
-    keys[i] = {x.x + 0.0, x.y + 0.0, x.z + 0.0, corner, i};  // -0.0 -> +0.0: equal points, equal keys
+    rounded[i] = {x.x + 0.0, x.y + 0.0, x.z + 0.0};  // -0.0 -> +0.0: equal points, equal keys
+    const std::uint32_t h =
+        g ? hash_key(static_cast<std::uint64_t>(g->x), static_cast<std::uint64_t>(g->y), static_cast<std::uint64_t>(g->z))
+          : hash_key(std::bit_cast<std::uint64_t>(rounded[i].x), std::bit_cast<std::uint64_t>(rounded[i].y),
+                     std::bit_cast<std::uint64_t>(rounded[i].z));
+    keyed[i] = {h, i};
   };
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const auto& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
@@ -123,53 +136,58 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
         // An unbuilt triangle's corners are grid points already.
         const std::optional<IntPoint> g = unbuilt(p) ? (*p.corners)[k] : as_grid_point(p.vertices[k]);
         item[at] = {g.value_or(IntPoint{}), static_cast<std::uint32_t>(i), k, corners.offsets[i] + k, g.has_value()};
-        key_of(at, corners.offsets[i] + k, g, g ? nullptr : &p.vertices[k]);
+        set_key(at, g, g ? nullptr : &p.vertices[k]);
       }
     }
   });
-  // The input vertex items; from here on first_corner[v] holds v's item.
+  // The input vertex items.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layout.first_corner.size(), 4096), [&](const auto& r) {
     for (std::size_t v = r.begin(); v != r.end(); ++v) {
-      std::uint32_t& f = layout.first_corner[v];
-      if (f == kNone) continue;
-      const std::uint32_t c = f, at = item_of_vertex[v];
-      const auto poly = static_cast<std::uint32_t>(
-          std::upper_bound(corners.offsets.begin(), corners.offsets.end(), c) - corners.offsets.begin() - 1);
+      const std::uint64_t f = layout.first_corner[v];
+      if (f == kNoCorner) continue;
+      const auto c = static_cast<std::uint32_t>(f >> 32), poly = static_cast<std::uint32_t>(f);
       const IntPoint g = (*polys[poly].corners)[c - corners.offsets[poly]];
+      const std::uint32_t at = item_of_vertex[v];
       item[at] = {g, poly, c - corners.offsets[poly], c, true};
-      key_of(at, c, g, nullptr);
-      f = at;
+      set_key(at, g, nullptr);
     }
   });
-  tbb::parallel_sort(keys.begin(), keys.end());
+  sort_pairs(keyed);  // filled in item order: the radix path
 
-  // Per item, its class's representative: the smallest corner of the class
-  // (that of the class's first item in the run).
+  // Per item, its class's representative: the smallest corner of the class.
+  // Grid-ness belongs to the exact point: a grid point equals only grid points.
+  auto same = [&](std::uint32_t a, std::uint32_t b) {
+    const Item &x = item[a], &y = item[b];
+    if (x.is_grid || y.is_grid) return x.is_grid && y.is_grid && x.grid == y.grid;
+    const Vec3d &ra = rounded[a], &rb = rounded[b];
+    return ra.x == rb.x && ra.y == rb.y && ra.z == rb.z && same_point(item_point(polys, x), item_point(polys, y));
+  };
   std::vector<std::uint32_t> rep(items);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
     std::size_t i = r.begin();
-    while (i > 0 && i < items && keys[i].same_position(keys[i - 1])) ++i;  // runs belong to the block they start in
-    std::vector<std::uint32_t> heads;  // the items heading the classes of the current run
+    while (i > 0 && i < items && keyed[i].first == keyed[i - 1].first) ++i;  // runs belong to the block they start in
+    std::vector<std::uint32_t> head, smallest, class_of;  // per class of the run: an item, its smallest corner
     while (i < r.end() && i < items) {
-      std::size_t j = i;
-      while (j < items && keys[j].same_position(keys[i])) ++j;
-      heads.clear();
-      for (std::size_t k = i; k < j; ++k) {
-        const Item& it = item[keys[k].item];
-        // Grid-ness belongs to the exact point: a grid point equals only grid points.
-        auto same = [&](std::uint32_t h) {
-          if (it.is_grid) return item[h].is_grid && item[h].grid == it.grid;
-          return !item[h].is_grid && same_point(item_point(polys, item[h]), item_point(polys, it));
-        };
-        std::uint32_t found = keys[k].item;
-        for (const std::uint32_t h : heads)
-          if (same(h)) {
-            found = h;
-            break;
-          }
-        if (found == keys[k].item) heads.push_back(found);
-        rep[keys[k].item] = item[found].corner;  // keys are sorted by corner within a run: the head's is the smallest
+      std::size_t j = i + 1;
+      while (j < items && keyed[j].first == keyed[i].first) ++j;
+      if (j == i + 1) {  // most runs: one item
+        rep[keyed[i].second] = item[keyed[i].second].corner;
+        i = j;
+        continue;
       }
+      head.clear(), smallest.clear(), class_of.clear();
+      for (std::size_t k = i; k < j; ++k) {
+        const std::uint32_t it = keyed[k].second;
+        std::size_t c = 0;
+        while (c < head.size() && !same(head[c], it)) ++c;
+        if (c == head.size()) {
+          head.push_back(it);
+          smallest.push_back(item[it].corner);
+        }
+        smallest[c] = std::min(smallest[c], item[it].corner);
+        class_of.push_back(static_cast<std::uint32_t>(c));
+      }
+      for (std::size_t k = i; k < j; ++k) rep[keyed[k].second] = smallest[class_of[k - i]];
       i = j;
     }
   });
@@ -178,8 +196,8 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
   // output order): flag the heads' corners, then count along the corners.
   std::vector<std::uint32_t> class_at(n + 1, 0);  // per corner: 1 if it heads a class; then its class
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
-    for (std::size_t k = r.begin(); k != r.end(); ++k)
-      if (rep[keys[k].item] == keys[k].corner) class_at[keys[k].corner] = 1;
+    for (std::size_t it = r.begin(); it != r.end(); ++it)
+      if (rep[it] == item[it].corner) class_at[item[it].corner] = 1;
   });
   std::exclusive_scan(class_at.begin(), class_at.end(), class_at.begin(), 0u);
   const std::uint32_t classes = class_at[n];
@@ -187,13 +205,12 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
   out.exact.resize(classes);
   out.rounded.resize(classes);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
-    for (std::size_t k = r.begin(); k != r.end(); ++k) {
-      const ItemKey& key = keys[k];
-      if (rep[key.item] != key.corner) continue;
-      const Item& it = item[key.item];
-      const std::uint32_t id = class_at[key.corner];
-      out.exact[id] = it.is_grid ? to_point(it.grid) : item_point(polys, it);
-      out.rounded[id] = {key.x, key.y, key.z};  // each class is rounded once
+    for (std::size_t it = r.begin(); it != r.end(); ++it) {
+      const Item& x = item[it];
+      if (rep[it] != x.corner) continue;
+      const std::uint32_t id = class_at[x.corner];
+      out.exact[id] = x.is_grid ? to_point(x.grid) : item_point(polys, x);
+      out.rounded[id] = rounded[it];  // each class is rounded once
     }
   });
   corners.ids.resize(n);
@@ -201,8 +218,7 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const OutputPolygon& p = polys[i];
       for (std::uint32_t k = 0; k < corner_count(p); ++k) {
-        const std::uint32_t it = folded(p, ids) ? layout.first_corner[input_vertex(p, k, *ids)]
-                                                : layout.built_before[i] + k;
+        const std::uint32_t it = folded(p, ids) ? item_of_vertex[input_vertex(p, k, *ids)] : layout.built_before[i] + k;
         corners.ids[corners.offsets[i] + k] = class_of(it);
       }
     }
