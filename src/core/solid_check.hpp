@@ -88,6 +88,11 @@ bool triangles_meet_improperly(const std::array<IntPoint, 3>& a, const std::arra
 /// The closed triangles have a common point, any (shared vertices and
 /// touching included): the contact test of triangles of different operands.
 bool triangles_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b);
+/// The same, given both grid normals (na = grid_normal of a, nb of b): the
+/// test of two triangles that share no vertex id, without the set-up of
+/// triangles_meet_improperly (which ends in it when nothing is shared).
+bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
+                          const std::array<IntPoint, 3>& b, const std::array<std::int64_t, 3>& nb);
 /// Every corner of `b` lies strictly on one side of the plane of `a` (normal
 /// `na` = grid_normal of a), so the two cannot meet: the cheap rejection
 /// before triangles_meet. Exact.

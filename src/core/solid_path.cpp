@@ -54,7 +54,8 @@ void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32
       for (; m != 0; m &= m - 1) {
         const std::uint32_t ib = b_base + B.item(bb + static_cast<std::size_t>(std::countr_zero(m)));
         const std::array<IntPoint, 3>& tb = grid.corners[ib];
-        if (!beside_plane(ta, na, tb) && triangles_meet(ta, tb)) sink.local().emplace_back(ia, ib);
+        if (!beside_plane(ta, na, tb) && apart_triangles_meet(ta, na, tb, grid_normal(tb[0], tb[1], tb[2])))
+          sink.local().emplace_back(ia, ib);
       }
     }
     return;

@@ -162,8 +162,8 @@ bool triangles_meet_improperly(const std::array<IntPoint, 3>& a, const std::arra
 
 bool triangles_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b) {
   // With no corner counted as shared, every common point is improper: the
-  // closed-set tests below decide (equal positions included).
-  return triangles_meet_improperly(contact_triangle(a, {0, 1, 2}), contact_triangle(b, {3, 4, 5}));
+  // closed-set tests decide (equal positions included).
+  return apart_triangles_meet(a, grid_normal(a[0], a[1], a[2]), b, grid_normal(b[0], b[1], b[2]));
 }
 
 bool beside_plane(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
@@ -221,13 +221,18 @@ bool triangles_meet_improperly(const ContactTriangle& ta, const ContactTriangle&
     return true;  // unreachable for non-degenerate triangles; answer "meet" to stay safe
   }
   // No shared vertex.
+  return apart_triangles_meet(a, ta.n, b, tb.n);
+}
+
+bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
+                          const std::array<IntPoint, 3>& b, const std::array<std::int64_t, 3>& nb) {
   const auto one_side = [](const i128 (&s)[3]) {
     return (s[0] > 0 && s[1] > 0 && s[2] > 0) || (s[0] < 0 && s[1] < 0 && s[2] < 0);
   };
-  const i128 sa[3] = {side_of_b(a[0]), side_of_b(a[1]), side_of_b(a[2])};
+  const i128 sa[3] = {grid_side(b[0], nb, a[0]), grid_side(b[0], nb, a[1]), grid_side(b[0], nb, a[2])};
   if (one_side(sa)) return false;
-  if (sa[0] == 0 && sa[1] == 0 && sa[2] == 0) return coplanar_meet(a, b, Projection(dominant_axis(ta.n)));
-  const i128 sb[3] = {side_of_a(b[0]), side_of_a(b[1]), side_of_a(b[2])};
+  if (sa[0] == 0 && sa[1] == 0 && sa[2] == 0) return coplanar_meet(a, b, Projection(dominant_axis(na)));
+  const i128 sb[3] = {grid_side(a[0], na, b[0]), grid_side(a[0], na, b[1]), grid_side(a[0], na, b[2])};
   if (one_side(sb)) return false;
   const int signs_a[3] = {sign(sa[0]), sign(sa[1]), sign(sa[2])}, signs_b[3] = {sign(sb[0]), sign(sb[1]), sign(sb[2])};
   return straddling_triangles_meet(a, b, signs_a, signs_b);
