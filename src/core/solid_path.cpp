@@ -39,11 +39,12 @@ void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32
   if (!overlap(A.node(a), B.node(b))) return;
   const bool a_leaf = da == A.depth(), b_leaf = db == B.depth();
   if (a_leaf && b_leaf) {
-    const auto [ab, ae] = A.leaf_slots(a);
-    const std::size_t bb = B.leaf_slots(b).first;
-    for (std::size_t i = ab; i < ae; ++i) {
+    const std::size_t ab = A.leaf_slots(a).first, bb = B.leaf_slots(b).first;
+    if (ab >= A.size() || bb >= B.size()) return;  // empty leaves (their boxes meet nothing anyway)
+    // a's triangles whose boxes meet b's node box, eight at a time.
+    for (unsigned near = A.overlap_mask(a, B.node(b)); near != 0; near &= near - 1) {
+      const std::size_t i = ab + static_cast<std::size_t>(std::countr_zero(near));
       const Box32 box = A.box(i);
-      if (!overlap(box, B.node(b))) continue;
       const std::uint32_t ia = a_base + A.item(i);
       const std::array<IntPoint, 3>& ta = grid.corners[ia];
       unsigned m = B.overlap_mask(b, box);

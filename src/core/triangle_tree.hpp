@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -75,6 +76,8 @@ class TriangleTree {
   }
   /// Bit k set iff the box of the leaf's k-th slot meets `query` (slots past
   /// the last triangle never do): all kLeaf tests at once, without branches.
+  /// The leaf must hold a triangle (leaf_slots(leaf_node).first < size()):
+  /// the leaves past the last one have no coordinate block.
   unsigned overlap_mask(std::size_t leaf_node, const Box32& query) const;
   /// The same without vector instructions (what overlap_mask is where SSE2 is missing).
   unsigned overlap_mask_portable(std::size_t leaf_node, const Box32& query) const;
@@ -128,6 +131,7 @@ class TriangleTree {
 };
 
 inline unsigned TriangleTree::overlap_mask(std::size_t leaf_node, const Box32& q) const {
+  assert(leaf_node - first_leaf() < block_.size());
 #if defined(__SSE2__)
   const LeafBlock& b = block_[leaf_node - first_leaf()];
   static_assert(kLeaf == 8, "two 4-lane vectors per coordinate");
@@ -149,6 +153,7 @@ inline unsigned TriangleTree::overlap_mask(std::size_t leaf_node, const Box32& q
 }
 
 inline unsigned TriangleTree::overlap_mask_portable(std::size_t leaf_node, const Box32& q) const {
+  assert(leaf_node - first_leaf() < block_.size());
   const LeafBlock& b = block_[leaf_node - first_leaf()];
   unsigned mask = 0;
   for (std::size_t k = 0; k < kLeaf; ++k) {
