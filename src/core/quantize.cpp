@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "ember/core/quantize.hpp"
 
 #include <cmath>
@@ -106,5 +107,10 @@ Vec3d Quantizer::dequantize(const IntPoint& p) const {
 }
 
 double Quantizer::grid_spacing() const { return std::ldexp(1.0, -k_); }
+
+bool Quantizer::grid_points_exact() const {
+  constexpr std::int64_t kExact = (std::int64_t{1} << 53) - kCoordLimit;
+  return std::all_of(c_, c_ + 3, [](std::int64_t c) { return c > -kExact && c < kExact; });
+}
 
 }  // namespace ember

@@ -55,6 +55,38 @@ TEST(Quantize, RoundingErrorIsAtMostHalfAGridStep) {
   }
 }
 
+/// Whether every grid point on the box of corners (+-kCoordLimit)^3 and a
+/// few inside dequantize to their exact value (g + centre) * 2^-k.
+bool grid_corners_dequantize_exactly(const Quantizer& q) {
+  const std::int64_t L = kCoordLimit;
+  for (const std::int64_t v : {-L, -L + 1, std::int64_t{-1}, std::int64_t{0}, std::int64_t{1}, L - 1, L}) {
+    const Vec3d d = q.dequantize(IntPoint{v, v, v});
+    for (int a = 0; a < 3; ++a) {
+      mpq_class want = mpz_class(static_cast<long>(v)) + mpz_class(static_cast<long>(q.centre_grid()[a]));
+      if (q.exponent() >= 0) {
+        want /= mpz_class(1) << static_cast<unsigned>(q.exponent());
+      } else {
+        want *= mpz_class(1) << static_cast<unsigned>(-q.exponent());
+      }
+      if (mpq_class((&d.x)[a]) != want) return false;
+    }
+  }
+  return true;
+}
+
+TEST(Quantize, GridPointsExactMeansTheyDequantizeExactly) {
+  // Near the origin the centre is small: every grid point is a double.
+  const Quantizer near = Quantizer::fit_box({-3, -1, 0}, {5, 2, 1});
+  EXPECT_TRUE(near.grid_points_exact());
+  EXPECT_TRUE(grid_corners_dequantize_exactly(near));
+  // A unit box a long way off: the centre needs more than 53 - 26 bits more
+  // than the grid, so grid points near it do not all fit a double (the mesh
+  // stage then checks every output triangle's rounded area).
+  const Quantizer far = Quantizer::fit_box({1e9, 1e9, 1e9}, {1e9 + 1, 1e9 + 1, 1e9 + 1});
+  EXPECT_FALSE(far.grid_points_exact());
+  EXPECT_FALSE(grid_corners_dequantize_exactly(far));
+}
+
 /// Exact value of a double as a rational.
 mpq_class exact(double d) {
   mpq_class r(d);  // GMP converts doubles exactly

@@ -43,6 +43,11 @@ class Quantizer {
   int exponent() const { return k_; }                       ///< scale = 2^exponent
   const std::int64_t* centre_grid() const { return c_; }    ///< centre * 2^k, per axis
   double grid_spacing() const;                              ///< 2^-k in caller units
+  /// Every grid point with |coordinate| <= kCoordLimit dequantizes exactly:
+  /// |centre| + kCoordLimit < 2^53 on every axis, so x + centre is a double
+  /// and scaling by 2^-k (normal) is exact. Then the rounded corners of a
+  /// grid triangle are the triangle itself, scaled by 2^-k and moved.
+  bool grid_points_exact() const;
 
  private:
   int k_ = 0;

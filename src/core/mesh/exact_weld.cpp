@@ -213,13 +213,23 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
       out.rounded[id] = rounded[it];  // each class is rounded once
     }
   });
+  // From here on item_of_vertex holds each used input vertex's class, so
+  // that a folded corner (most corners) costs one lookup.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layout.first_corner.size(), 4096), [&](const auto& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v)
+      if (layout.first_corner[v] != kNoCorner) item_of_vertex[v] = class_of(item_of_vertex[v]);
+  });
   corners.ids.resize(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const auto& r) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 1024), [&](const auto& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const OutputPolygon& p = polys[i];
-      for (std::uint32_t k = 0; k < corner_count(p); ++k) {
-        const std::uint32_t it = folded(p, ids) ? item_of_vertex[input_vertex(p, k, *ids)] : layout.built_before[i] + k;
-        corners.ids[corners.offsets[i] + k] = class_of(it);
+      std::uint32_t* out_ids = corners.ids.data() + corners.offsets[i];
+      if (folded(p, ids)) {
+        const std::uint32_t base = ids->operand_base[p.operand];
+        const std::array<std::uint32_t, 3>& v = ids->by_triangle[p.id];
+        for (int k = 0; k < 3; ++k) out_ids[k] = item_of_vertex[base + v[k]];
+      } else {
+        for (std::uint32_t k = 0; k < corner_count(p); ++k) out_ids[k] = class_of(layout.built_before[i] + k);
       }
     }
   });

@@ -55,7 +55,9 @@ namespace {
 /// slot: piece-by-piece fallbacks and regions whose diagonals were split). Vertices are numbered by
 /// first use, as a serial pass would number them, but computed in parallel:
 /// each vertex's first use is the smallest corner position using it.
-void assemble(const RegionTriangles& direct, const Regions& regions,
+/// `direct_exact`: the direct triangles' rounded corners are exact
+/// (Quantizer::grid_points_exact), so none of them can round to zero area.
+void assemble(const RegionTriangles& direct, bool direct_exact, const Regions& regions,
               const std::vector<std::array<std::uint32_t, 3>>& slots, const std::vector<std::size_t>& slot,
               const std::vector<std::uint32_t>& count, const std::vector<std::uint32_t>& override_regions,
               const std::vector<RegionTriangles>& overrides, const OutputVertices& verts,
@@ -114,6 +116,10 @@ void assemble(const RegionTriangles& direct, const Regions& regions,
     for (std::size_t t = range.begin(); t != range.end(); ++t) {
       for (int c = 0; c < 3; ++c) mesh.indices[3 * t + static_cast<std::size_t>(c)] = remap[tris[t][c]];
       mesh.face_offsets[t + 1] = static_cast<std::uint32_t>(3 * (t + 1));
+      // A whole input triangle (every direct one) has area; rounded exactly,
+      // its area vector is its grid normal times 2^-2k, which the extended
+      // sum below forms exactly (grid differences <= 2^26, products <= 2^52).
+      if (direct_exact && t < direct.tris.size()) continue;
       local += rounded_area_is_zero(mesh.vertices, std::span<const std::uint32_t>(mesh.indices.data() + 3 * t, 3));
     }
     degenerate += local;
@@ -249,7 +255,7 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
       overrides.back().source.assign(overrides.back().tris.size(), regions.regions[r].source);
     }
   }
-  assemble(direct, regions, slots, slot, count, override_regions, overrides, verts, sources, out);
+  assemble(direct, q.grid_points_exact(), regions, slots, slot, count, override_regions, overrides, verts, sources, out);
   out.stats.triangulate_ms = ms_since(clock);
   return out;
 }
