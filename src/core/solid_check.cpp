@@ -31,7 +31,8 @@ std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, const
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!keep[i]) continue;
     for (const std::uint32_t j : grid.neighbors[i]) {
-      if (j == kNoNeighbor || !keep[j]) continue;
+      // Neighbours are mutual (both ends of a manifold edge): each pair once.
+      if (j == kNoNeighbor || j < i || !keep[j]) continue;
       const std::uint32_t ri = find(parent, i), rj = find(parent, j);
       if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);  // the root is the smallest id
     }
