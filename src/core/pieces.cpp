@@ -44,10 +44,9 @@ void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& o
 /// intersection segment crosses the piece's interior with positive length.
 /// `other_signs` are the other polygon's vertices classified against the
 /// piece's plane.
-void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& support, const Polygon& other,
-                       const std::vector<std::int8_t>& other_signs, std::vector<std::int8_t>& signs,
-                       std::vector<Plane>& cons, Polygon& neg, Polygon& pos) {
-  const Polygon& poly = pieces[i].poly;
+bool split_by_transverse(const Polygon& poly, const Plane& support, const Polygon& other,
+                         const std::vector<std::int8_t>& other_signs, std::vector<std::int8_t>& signs,
+                         std::vector<Plane>& cons, Polygon& neg, Polygon& pos) {
   bool below = false, above = false;
   signs.resize(poly.vertices.size());
   for (std::size_t v = 0; v < poly.vertices.size(); ++v) {
@@ -56,17 +55,23 @@ void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& s
     below |= s < 0;
     above |= s > 0;
   }
-  if (!(below && above)) return;
+  if (!(below && above)) return false;
   const ChordOverlap filtered = filter_chords(poly, support, signs, other, other.support, other_signs);
-  if (filtered == ChordOverlap::kNo) return;
+  if (filtered == ChordOverlap::kNo) return false;
   if (filtered == ChordOverlap::kUnsure) {
-    if (chords_separated_by_edge(poly, other)) return;
+    if (chords_separated_by_edge(poly, other)) return false;
     cons.clear();
     chord_constraints(poly, signs, cons);
     chord_constraints(other, other_signs, cons);
-    if (!line_region_has_length(support, other.support, cons)) return;
+    if (!line_region_has_length(support, other.support, cons)) return false;
   }
-  if (clip(poly, signs, other.support, neg, pos) != ClipSide::Both) return;
+  return clip(poly, signs, other.support, neg, pos) == ClipSide::Both;
+}
+
+void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& support, const Polygon& other,
+                       const std::vector<std::int8_t>& other_signs, std::vector<std::int8_t>& signs,
+                       std::vector<Plane>& cons, Polygon& neg, Polygon& pos) {
+  if (!split_by_transverse(pieces[i].poly, support, other, other_signs, signs, cons, neg, pos)) return;
   std::swap(pieces[i].poly, neg);  // the old piece's buffers serve the next clip
   pieces.push_back({std::move(pos)});
 }

@@ -26,10 +26,18 @@ bool coplanar_overlap(const Polygon& a, const Polygon& b);
 /// scratch (a cut piece's old buffers serve the next clip).
 void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& other, Polygon& neg, Polygon& pos);
 
-/// Case C3: split piece i (on `support`) by the other polygon's plane if
-/// their intersection segment crosses the piece's interior with positive
-/// length. `other_signs` are the other polygon's vertices classified against
-/// `support`; `signs`, `cons`, `neg`, `pos` are scratch.
+/// Case C3 for one polygon: true if the other polygon's plane splits `poly`
+/// (on `support`), i.e. their intersection segment crosses poly's interior
+/// with positive length; then the halves are in `neg` and `pos`.
+/// `other_signs` are the other polygon's vertices classified against
+/// `support`; `signs` and `cons` are scratch.
+bool split_by_transverse(const Polygon& poly, const Plane& support, const Polygon& other,
+                         const std::vector<std::int8_t>& other_signs, std::vector<std::int8_t>& signs,
+                         std::vector<Plane>& cons, Polygon& neg, Polygon& pos);
+
+/// Case C3 in place: piece i becomes the negative half, the positive half a
+/// new piece at the end. `neg`, `pos` are scratch (a cut piece's old buffers
+/// serve the next clip).
 void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& support, const Polygon& other,
                        const std::vector<std::int8_t>& other_signs, std::vector<std::int8_t>& signs,
                        std::vector<Plane>& cons, Polygon& neg, Polygon& pos);

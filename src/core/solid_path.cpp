@@ -7,6 +7,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -185,6 +186,46 @@ struct CutScratch {
   Polygon neg, pos;
 };
 
+/// Below this many pieces a partner's cut runs piece by piece.
+constexpr std::size_t kParallelCut = 256;
+
+/// The transverse cut of cut_triangle by partner o over pieces 0 .. n - 1 at
+/// once: the pieces that o's plane splits are split in parallel, then the
+/// halves are put in place in piece order, as the serial loop does (each
+/// piece is cut by o on its own, and the new halves are not cut by o again).
+/// For a large face under a pile of slivers (EMBER case 582: 3,000 partners,
+/// 4,400 pieces), whose cuts would otherwise hold one thread.
+void split_pieces_in_parallel(CutScratch& cs, std::size_t n, const Plane& support, const Polygon& o,
+                              const PieceBox& ob) {
+  struct Split {
+    std::size_t i;
+    Polygon neg, pos;
+  };
+  tbb::enumerable_thread_specific<std::vector<Split>> found;
+  tbb::this_task_arena::isolate([&] {  // waiting here runs only these pieces
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::vector<std::int8_t> signs;
+      std::vector<Plane> cons;
+      Polygon neg, pos;
+      std::vector<Split>& local = found.local();
+      for (std::size_t i = r.begin(); i != r.end(); ++i)
+        if (!apart(cs.boxes[i], ob) &&
+            split_by_transverse(cs.pieces[i].poly, support, o, cs.other_signs, signs, cons, neg, pos))
+          local.push_back({i, std::move(neg), std::move(pos)});
+    });
+  });
+  std::vector<Split> splits;
+  for (std::vector<Split>& local : found)
+    for (Split& sp : local) splits.push_back(std::move(sp));
+  std::sort(splits.begin(), splits.end(), [](const Split& a, const Split& b) { return a.i < b.i; });
+  for (Split& sp : splits) {
+    cs.pieces[sp.i].poly = std::move(sp.neg);
+    cs.pieces.push_back({std::move(sp.pos)});
+    cs.boxes[sp.i] = piece_box(cs.pieces[sp.i].poly);
+    cs.boxes.push_back(piece_box(cs.pieces.back().poly));
+  }
+}
+
 /// t's pieces (Section 4.3 with closed operands and no box): what lower-id
 /// coplanar partners cover is cut away and left to them (Fig. 8), then every
 /// transverse partner touching t's plane cuts along its plane (C3). Higher-id
@@ -224,6 +265,10 @@ bool cut_triangle(const Polygon& t, std::uint32_t id, PolygonCache& cache, CutSc
     if (coplanar(t.support, o.support) || !touches_plane(cache.corners(q), t.support, cs.other_signs)) continue;
     const PieceBox ob = piece_box(o);
     const std::size_t n = cs.pieces.size();
+    if (n >= kParallelCut) {
+      split_pieces_in_parallel(cs, n, t.support, o, ob);
+      continue;
+    }
     for (std::size_t i = 0; i < n; ++i) {
       if (apart(cs.boxes[i], ob)) continue;
       cut_by_transverse(cs.pieces, i, t.support, o, cs.other_signs, cs.signs, cs.cons, cs.neg, cs.pos);
@@ -336,6 +381,45 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const Gr
     front.assign(at, at + static_cast<std::ptrdiff_t>(operands));
     back.assign(at + static_cast<std::ptrdiff_t>(operands), at + static_cast<std::ptrdiff_t>(2 * operands));
   };
+  // Piece m of touched triangle t (input triangle id, operand o): across an
+  // input edge to an untouched neighbour, else from the handover (when one is
+  // given), else traced.
+  const auto classify_piece = [&](const Polygon& f, const Polygon& t, std::uint32_t id, std::size_t m,
+                                  std::uint32_t o, SolidHandover* handover, Wnv& front, Wnv& back,
+                                  TraceScratch& sc) {
+    const std::uint32_t via = untouched_neighbour_along(f, t, grid.neighbors[id], touched);
+    if (via != kNoNeighbor) {
+      component_w(via, front, back);
+      front[o] = 0;
+      back[o] = 1;
+      return true;
+    }
+    if (handover && handover->find(f, front, back)) return true;
+    return classify_from_outside(tracer, f, o, (std::uint64_t{id} << 20) ^ (m << 10), front, back, sc);
+  };
+  // Every piece of t at once, in parallel (no handover: it is sequential),
+  // into w: per piece its front, then its back winding numbers.
+  const auto classify_pieces = [&](const std::vector<Piece>& pieces, const Polygon& t, std::uint32_t id,
+                                   std::uint32_t o, std::vector<int>& w) {
+    w.resize(2 * operands * pieces.size());
+    std::atomic<bool> ok{true};
+    tbb::this_task_arena::isolate([&] {  // waiting here runs only these pieces, not other chunks
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 8), [&](const auto& r) {
+        TraceScratch scratch;
+        Wnv front, back;
+        for (std::size_t m = r.begin(); m != r.end() && ok.load(std::memory_order_relaxed); ++m) {
+          if (!classify_piece(pieces[m].poly, t, id, m, o, nullptr, front, back, scratch)) {
+            ok = false;
+            return;
+          }
+          const auto at = w.begin() + static_cast<std::ptrdiff_t>(2 * operands * m);
+          std::copy(front.begin(), front.end(), at);
+          std::copy(back.begin(), back.end(), at + static_cast<std::ptrdiff_t>(operands));
+        }
+      });
+    });
+    return ok.load();
+  };
   const auto emitted = [&](const Wnv& front, const Wnv& back, bool& flip) {
     const bool in_front = ctx.inside(front), in_back = ctx.inside(back);
     flip = in_front;
@@ -349,6 +433,7 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const Gr
   // triangle's winding numbers (solid_path.hpp, 4: nothing else comes near
   // that edge, so the same argument holds); the others are traced.
   constexpr std::size_t kChunk = 256;
+  constexpr std::size_t kParallelPieces = 64;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;  // (operand, first slot)
   for (std::uint32_t o = 0; o < operands; ++o)
     for (std::size_t s = 0; s < trees.tree[o].size(); s += kChunk) chunks.emplace_back(o, static_cast<std::uint32_t>(s));
@@ -359,6 +444,7 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const Gr
     TraceScratch sc;
     SolidHandover handover(operands);
     Wnv front, back;
+    std::vector<int> piece_w;  // per piece of a heavily cut triangle: front, then back
     for (std::size_t c = r.begin(); c != r.end(); ++c) {
       const auto [o, first] = chunks[c];
       handover.clear();  // a chunk's result must not depend on the chunks before it
@@ -372,15 +458,25 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const Gr
         const Polygon& t = cache.get(id);
         const bool whole = cut_triangle(t, id, cache, cs) && cs.pieces.size() == 1;
         handover.begin_triangle(id, t, cs.partners, grid);
+        // A triangle cut into many pieces (a large face under a pile of
+        // slivers: EMBER case 582 has three with 1,600-4,400) would hold one
+        // thread for its traces: those are classified in parallel first, then
+        // recorded in order. A piece's winding numbers are exact, whichever
+        // way they are found, so the handover's state and the output are the
+        // same as piece by piece.
+        const bool parallel = cs.pieces.size() >= kParallelPieces;
+        if (parallel && !classify_pieces(cs.pieces, t, id, o, piece_w)) {
+          failed = true;
+          break;
+        }
         for (std::size_t m = 0; m < cs.pieces.size(); ++m) {
           const Polygon& f = cs.pieces[m].poly;
-          const std::uint32_t via = untouched_neighbour_along(f, t, grid.neighbors[id], touched);
-          if (via != kNoNeighbor) {
-            component_w(via, front, back);
-            front[o] = 0;
-            back[o] = 1;
-          } else if (!handover.find(f, front, back) &&
-                     !classify_from_outside(tracer, f, o, (std::uint64_t{id} << 20) ^ (m << 10), front, back, sc)) {
+          if (parallel) {
+            front.assign(piece_w.begin() + static_cast<std::ptrdiff_t>(2 * operands * m),
+                         piece_w.begin() + static_cast<std::ptrdiff_t>(2 * operands * m + operands));
+            back.assign(piece_w.begin() + static_cast<std::ptrdiff_t>(2 * operands * m + operands),
+                        piece_w.begin() + static_cast<std::ptrdiff_t>(2 * operands * (m + 1)));
+          } else if (!classify_piece(f, t, id, m, o, &handover, front, back, sc)) {
             failed = true;
             break;
           }

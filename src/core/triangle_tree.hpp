@@ -78,7 +78,9 @@ class TriangleTree {
   /// the last triangle never do): all kLeaf tests at once, without branches.
   /// The leaf must hold a triangle (leaf_slots(leaf_node).first < size()):
   /// the leaves past the last one have no coordinate block.
-  unsigned overlap_mask(std::size_t leaf_node, const Box32& query) const;
+  /// Always inlined: it is the inner step of every leaf loop, and the
+  /// compiler's own choice flips with unrelated changes to its callers.
+  [[gnu::always_inline]] inline unsigned overlap_mask(std::size_t leaf_node, const Box32& query) const;
   /// The same without vector instructions (what overlap_mask is where SSE2 is missing).
   unsigned overlap_mask_portable(std::size_t leaf_node, const Box32& query) const;
   /// Node n's box (heap order: children 2n + 1, 2n + 2; root 0).

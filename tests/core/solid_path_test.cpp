@@ -31,6 +31,34 @@ TEST(SolidPath, RunsExactlyWhenEveryOperandIsSolid) {
   EXPECT_FALSE(r.stats.solid_path);
 }
 
+TEST(SolidPath, AFaceUnderManySliversIsCutAndClassifiedInParallel) {
+  // 150 thin slabs stand on the top face of a box: each of the face's two
+  // triangles is cut by ~300 partner planes into more pieces than the
+  // solid path cuts and classifies one by one (its parallel cut and traces).
+  // Same surface as the subdivision (run_checked), the same mesh at every
+  // thread count.
+  std::vector<Mesh> slabs;
+  for (int k = 0; k < 150; ++k) {
+    const double x = -1.5 + 3.0 * k / 150;
+    slabs.push_back(box({x, -1.5, 1.5}, {x + 0.004, 1.5, 2.5}));
+  }
+  const std::vector<Mesh> ops = snapped({box({-2, -2, -2}, {2, 2, 2}), merge(slabs)});
+  for (const Op op : {Op::Union, Op::Difference}) {
+    BooleanOptions one;
+    one.threads = 1;
+    const BooleanResult r = run_checked(ops, op, one);
+    EXPECT_TRUE(r.stats.solid_path);
+    EXPECT_GT(r.mesh.face_count(), 600u);  // the top face in ~300 strips per triangle
+    for (const int threads : {2, 4}) {
+      BooleanOptions many;
+      many.threads = threads;
+      const BooleanResult m = boolean(ops, op, many);
+      EXPECT_EQ(m.mesh.vertices, r.mesh.vertices) << threads << " threads";
+      EXPECT_EQ(m.mesh.indices, r.mesh.indices) << threads << " threads";
+    }
+  }
+}
+
 TEST(SolidPath, UntouchedComponentsAreClassifiedWhole) {
   // Operand 0: a ball inside a large box, a ball outside it, and a ball
   // crossing its surface; operand 1: the box. Each ball far from the box's
