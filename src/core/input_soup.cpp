@@ -83,14 +83,17 @@ EdgeMatching match_edges(const GridInput& gi) {
     welded.ids.assign(gi.vertex_ids.begin() + static_cast<std::ptrdiff_t>(begin),
                       gi.vertex_ids.begin() + static_cast<std::ptrdiff_t>(gi.operand_begin[o + 1]));
     welded.vertex_count = gi.vertex_count[o];
+    // Called concurrently: a triangle's three edges may be matched by
+    // different threads, so its manifold bits are or-ed atomically.
     for_each_edge(welded, [&](std::span<const EdgeUse> uses) {
       int balance = 0;
       for (const EdgeUse& u : uses) balance += u.forward ? 1 : -1;
-      m.open[o] += balance != 0;
+      if (balance != 0) std::atomic_ref<std::size_t>(m.open[o]).fetch_add(1, std::memory_order_relaxed);
       if (uses.size() != 2 || uses[0].forward == uses[1].forward) return;
       for (int i = 0; i < 2; ++i) {
         const EdgeUse& u = uses[i];
-        m.manifold[begin + u.tri] |= static_cast<std::uint8_t>(1u << u.edge);
+        std::atomic_ref<std::uint8_t>(m.manifold[begin + u.tri])
+            .fetch_or(static_cast<std::uint8_t>(1u << u.edge), std::memory_order_relaxed);
         m.partner[begin + u.tri][u.edge] = static_cast<std::uint32_t>(begin + uses[1 - i].tri);
       }
     });

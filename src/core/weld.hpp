@@ -1,6 +1,9 @@
 #pragma once
 // Edge matching on welded vertex ids (closedness, manifold components). The
 // ids come from the set-up's weld of the grid vertices (grid_input.hpp).
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -27,7 +30,9 @@ struct EdgeUse {
 
 /// Calls f(uses) once per undirected edge with the span of its uses, ordered
 /// by triangle. Edges of collapsed corners (equal ids) are skipped. Linear:
-/// a counting sort by the lower id, then tiny per-vertex sorts.
+/// a counting sort by the lower id, then tiny per-vertex sorts, in parallel
+/// over the vertices: f runs concurrently for different edges (it must be
+/// thread-safe; the uses it sees do not depend on the schedule).
 template <typename F>
 void for_each_edge(const WeldedTriangles& welded, F&& f) {
   std::vector<std::uint32_t> start(welded.vertex_count + 1, 0);
@@ -42,16 +47,18 @@ void for_each_edge(const WeldedTriangles& welded, F&& f) {
       const std::uint32_t a = welded.ids[t][e], b = welded.ids[t][(e + 1) % 3];
       if (a != b) uses[fill[std::min(a, b)]++] = {std::max(a, b), t, a < b, static_cast<std::uint8_t>(e)};
     }
-  for (std::size_t v = 0; v + 1 < start.size(); ++v) {
-    const auto first = uses.begin() + start[v], last = uses.begin() + start[v + 1];
-    std::sort(first, last);
-    for (auto it = first; it != last;) {
-      auto jt = it;
-      while (jt != last && jt->hi == it->hi) ++jt;
-      f(std::span<const EdgeUse>(&*it, static_cast<std::size_t>(jt - it)));
-      it = jt;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, start.size() - 1, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      const auto first = uses.begin() + start[v], last = uses.begin() + start[v + 1];
+      std::sort(first, last);
+      for (auto it = first; it != last;) {
+        auto jt = it;
+        while (jt != last && jt->hi == it->hi) ++jt;
+        f(std::span<const EdgeUse>(&*it, static_cast<std::size_t>(jt - it)));
+        it = jt;
+      }
     }
-  }
+  });
 }
 
 }  // namespace ember::core
