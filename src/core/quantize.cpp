@@ -1,6 +1,6 @@
-#include <algorithm>
 #include "ember/core/quantize.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -109,6 +109,7 @@ Vec3d Quantizer::dequantize(const IntPoint& p) const {
 double Quantizer::grid_spacing() const { return std::ldexp(1.0, -k_); }
 
 bool Quantizer::grid_points_exact() const {
+  static_assert(kCoordLimit < (std::int64_t{1} << 53), "a grid coordinate is itself a double");
   constexpr std::int64_t kExact = (std::int64_t{1} << 53) - kCoordLimit;
   return std::all_of(c_, c_ + 3, [](std::int64_t c) { return c > -kExact && c < kExact; });
 }

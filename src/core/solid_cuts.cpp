@@ -65,12 +65,6 @@ void split_pieces_in_parallel(CutScratch& cs, std::size_t n, const Plane& suppor
 
 }  // namespace
 
-/// t's pieces (Section 4.3 with closed operands and no box): what lower-id
-/// coplanar partners cover is cut away and left to them (Fig. 8), then every
-/// transverse partner touching t's plane cuts along its plane (C3). Higher-id
-/// coplanar partners need no cut: their edges continue into triangles of
-/// their closed operand that leave the plane, whose C3 cuts separate where
-/// their coverage changes. Returns false if a partner covered part of t.
 bool cut_triangle(const Polygon& t, std::uint32_t id, PolygonCache& cache, CutScratch& cs) {
   cs.pieces.resize(1);
   cs.pieces[0].poly = t;

@@ -37,6 +37,12 @@ i128 orient3d(const IntPoint& a, const IntPoint& b, const IntPoint& c, const Int
 /// product < 2^80 and the sum < 2^82) for three multiplications instead of nine.
 i128 side(const ContactTriangle& t, const IntPoint& p) { return grid_side(t.p[0], t.n, p); }
 
+/// Three corners' sides of a plane all strictly positive or all strictly
+/// negative: the triangle lies beside the plane and cannot meet it.
+bool strictly_one_side(const i128 (&s)[3]) {
+  return (s[0] > 0 && s[1] > 0 && s[2] > 0) || (s[0] < 0 && s[1] < 0 && s[2] < 0);
+}
+
 /// A 2D view of a plane: coordinates (u, v) after dropping axis `drop`.
 struct Projection {
   int u, v;
@@ -168,13 +174,8 @@ bool triangles_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint,
 
 bool beside_plane(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
                   const std::array<IntPoint, 3>& b) {
-  int above = 0, below = 0;
-  for (const IntPoint& p : b) {
-    const i128 v = grid_side(a[0], na, p);
-    above += v > 0;
-    below += v < 0;
-  }
-  return above == 3 || below == 3;
+  const i128 s[3] = {grid_side(a[0], na, b[0]), grid_side(a[0], na, b[1]), grid_side(a[0], na, b[2])};
+  return strictly_one_side(s);
 }
 
 bool triangles_meet_improperly(const ContactTriangle& ta, const ContactTriangle& tb) {
@@ -226,14 +227,11 @@ bool triangles_meet_improperly(const ContactTriangle& ta, const ContactTriangle&
 
 bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
                           const std::array<IntPoint, 3>& b, const std::array<std::int64_t, 3>& nb) {
-  const auto one_side = [](const i128 (&s)[3]) {
-    return (s[0] > 0 && s[1] > 0 && s[2] > 0) || (s[0] < 0 && s[1] < 0 && s[2] < 0);
-  };
   const i128 sa[3] = {grid_side(b[0], nb, a[0]), grid_side(b[0], nb, a[1]), grid_side(b[0], nb, a[2])};
-  if (one_side(sa)) return false;
+  if (strictly_one_side(sa)) return false;
   if (sa[0] == 0 && sa[1] == 0 && sa[2] == 0) return coplanar_meet(a, b, Projection(dominant_axis(na)));
   const i128 sb[3] = {grid_side(a[0], na, b[0]), grid_side(a[0], na, b[1]), grid_side(a[0], na, b[2])};
-  if (one_side(sb)) return false;
+  if (strictly_one_side(sb)) return false;
   const int signs_a[3] = {sign(sa[0]), sign(sa[1]), sign(sa[2])}, signs_b[3] = {sign(sb[0]), sign(sb[1]), sign(sb[2])};
   return straddling_triangles_meet(a, b, signs_a, signs_b);
 }

@@ -119,6 +119,8 @@ void assemble(const RegionTriangles& direct, bool direct_exact, const Regions& r
       // A whole input triangle (every direct one) has area; rounded exactly,
       // its area vector is its grid normal times 2^-2k, which the extended
       // sum below forms exactly (grid differences <= 2^26, products <= 2^52).
+      static_assert(kCoordLimit <= (std::int64_t{1} << 25) && 2 * 26 < 64,
+                    "whole-triangle area: grid differences <= 2^26, products <= 2^52, exact in long double");
       if (direct_exact && t < direct.tris.size()) continue;
       local += rounded_area_is_zero(mesh.vertices, std::span<const std::uint32_t>(mesh.indices.data() + 3 * t, 3));
     }
