@@ -37,7 +37,7 @@ double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_c
 
 std::string operand_name(std::size_t i) { return "operand " + std::to_string(i); }
 
-Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer& q, const std::vector<Provenance>& sources,
+Mesh export_mesh(const std::vector<core::OutputPolygon>& polys, const Quantizer& q, std::span<const Provenance> sources,
                  std::vector<Provenance>& provenance, std::size_t& dropped) {
   struct Key {
     std::uint64_t v[3];
@@ -191,7 +191,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   }
   core::Soup& soup = in.soup;
   core::GridTriangles& grid = in.grid;
-  const std::vector<Provenance>& sources = in.sources;
+  const std::span<const Provenance> sources = in.sources;
 
   std::vector<core::OutputPolygon> polys;
   const auto setup_done = std::chrono::steady_clock::now();

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/fill_vector.hpp"
 #include "ember/boolean.hpp"
 #include "ember/core/quantize.hpp"
 
@@ -26,13 +27,15 @@ struct GridTriangle {
   std::uint32_t operand, face;
 };
 
+/// Its per-triangle arrays are FillVectors (fill_vector.hpp): to_grid sizes
+/// them, then writes every entry in parallel.
 struct GridInput {
-  std::vector<GridTriangle> triangles;    ///< operand by operand, faces in order
+  FillVector<GridTriangle> triangles;    ///< operand by operand, faces in order
   /// Per triangle, its corners' welded grid vertex ids: within one operand,
   /// equal ids iff equal grid positions (numbered in sorted position order,
   /// so independent of scheduling). For edge matching (closedness, the
   /// proof's components).
-  std::vector<std::array<std::uint32_t, 3>> vertex_ids;
+  FillVector<std::array<std::uint32_t, 3>> vertex_ids;
   std::vector<std::size_t> operand_begin;  ///< operand o's triangles: [begin[o], begin[o+1])
   std::vector<std::size_t> vertex_count;   ///< per operand: how many welded ids it has
   std::array<std::int64_t, 3> lo{}, hi{};  ///< bounds of all grid vertices

@@ -105,7 +105,8 @@ InputSoup build_soup(const GridInput& gi, const EdgeMatching& edges) {
   const std::size_t n = gi.triangles.size();
   // Pass 1: which triangles have area (the exact grid normal is non-zero;
   // make_triangle decides the same).
-  std::vector<std::uint32_t> id(n + 1, 0);
+  FillVector<std::uint32_t> id(n + 1);  // pass 1 writes id[1..n]
+  id[0] = 0;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const auto& p = gi.triangles[i].p;

@@ -44,7 +44,7 @@ EdgeMatching match_edges(const GridInput& gi);
 /// grid.neighbors by id (from `edges`, in GridInput order).
 struct InputSoup {
   Soup soup;
-  std::vector<Provenance> sources;
+  FillVector<Provenance> sources;
   GridTriangles grid;
   std::size_t dropped_degenerate = 0;
 };

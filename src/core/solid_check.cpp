@@ -51,7 +51,7 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
   if (members.empty()) return {};
   // Counting the contacts (not just finding one) costs at most one full
   // search, the price of proving a solid operand; the count tells the user why.
-  std::vector<ContactTriangle> tris(members.size());
+  FillVector<ContactTriangle> tris(members.size());  // every entry written below
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i)

@@ -17,6 +17,7 @@
 #include <array>
 #include <span>
 
+#include "core/fill_vector.hpp"
 #include "core/solve.hpp"
 #include "core/triangle_tree.hpp"
 
@@ -33,15 +34,17 @@ enum class SolidVerdict {
 inline constexpr std::uint32_t kNoNeighbor = UINT32_MAX;
 
 /// The grid triangles behind the soup's polygons, indexed by polygon id.
+/// FillVectors (fill_vector.hpp): build_soup sizes them, then writes every
+/// entry in parallel.
 struct GridTriangles {
-  std::vector<std::array<IntPoint, 3>> corners;
+  FillVector<std::array<IntPoint, 3>> corners;
   /// Welded vertex ids (weld.hpp): within one operand, equal ids iff equal positions.
-  std::vector<std::array<std::uint32_t, 3>> vertex_ids;
+  FillVector<std::array<std::uint32_t, 3>> vertex_ids;
   /// Bit k: edge k is a manifold edge of its operand (EdgeMatching::manifold).
-  std::vector<std::uint8_t> manifold_edges;
+  FillVector<std::uint8_t> manifold_edges;
   /// Across manifold edge k: the other triangle's id (kNoNeighbor: none, or
   /// the edge is not manifold, or the other triangle is degenerate).
-  std::vector<std::array<std::uint32_t, 3>> neighbors;
+  FillVector<std::array<std::uint32_t, 3>> neighbors;
 };
 
 /// Components of the triangles with keep[i], joined across their manifold

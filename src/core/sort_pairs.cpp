@@ -22,15 +22,15 @@ constexpr std::size_t kChunk = std::size_t{1} << 16;
 // Below this a comparison sort is as fast and needs no second buffer.
 constexpr std::size_t kSmall = 2048;
 
-template <typename Key>
-using Pairs = std::vector<std::pair<Key, std::uint32_t>>;
+template <typename Key, typename Alloc>
+using Pairs = std::vector<std::pair<Key, std::uint32_t>, Alloc>;
 
 /// The key bits in which some two keys differ; `values_ordered` says
 /// whether the values are non-decreasing (the fast path's condition). One
 /// parallel pass over the same fixed chunks as the sort (a serial scan of
 /// millions of pairs would be the sort's only serial part).
-template <typename Key>
-Key varying_bits(const Pairs<Key>& v, bool& values_ordered) {
+template <typename Key, typename Alloc>
+Key varying_bits(const Pairs<Key, Alloc>& v, bool& values_ordered) {
   struct Chunk {
     Key any = 0, all = std::numeric_limits<Key>::max();
     bool ordered = true;
@@ -66,14 +66,16 @@ int next_varying(Key varying, int from) {
 
 /// Stable LSD radix sort by key, over the windows of kDigitBits that start at
 /// a varying bit (bits that no key differs in would only copy).
-template <typename Key>
-void radix_sort_by_key(Pairs<Key>& v, Key varying) {
+template <typename Key, typename Alloc>
+void radix_sort_by_key(Pairs<Key, Alloc>& v, Key varying) {
   constexpr int kBits = std::numeric_limits<Key>::digits;
   const std::size_t n = v.size(), chunks = (n + kChunk - 1) / kChunk;
-  Pairs<Key> other(n);
+  // The caller's vector type, so that the result can be swapped in; a
+  // FillVector's buffer is not zeroed first (each pass writes every slot).
+  Pairs<Key, Alloc> buffer(n);
   std::vector<std::array<std::size_t, kBuckets>> at(chunks);
   auto* src = &v;
-  auto* dst = &other;
+  auto* dst = &buffer;
   for (int shift = next_varying(varying, 0); shift < kBits; shift = next_varying(varying, shift + kDigitBits)) {
     const auto digit = [shift](Key k) { return static_cast<std::size_t>(k >> shift) & (kBuckets - 1); };
     tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
@@ -91,11 +93,11 @@ void radix_sort_by_key(Pairs<Key>& v, Key varying) {
     });
     std::swap(src, dst);
   }
-  if (src != &v) v.swap(other);
+  if (src != &v) v.swap(buffer);
 }
 
-template <typename Key>
-void sort_pairs_impl(Pairs<Key>& v) {
+template <typename Key, typename Alloc>
+void sort_pairs_impl(Pairs<Key, Alloc>& v) {
   if (v.size() < kSmall) {
     std::sort(v.begin(), v.end());
     return;
@@ -112,7 +114,14 @@ void sort_pairs_impl(Pairs<Key>& v) {
 
 }  // namespace
 
-void sort_pairs(std::vector<std::pair<std::uint64_t, std::uint32_t>>& v) { sort_pairs_impl(v); }
-void sort_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& v) { sort_pairs_impl(v); }
+template <typename Key, typename Alloc>
+void sort_pairs(std::vector<std::pair<Key, std::uint32_t>, Alloc>& v) {
+  sort_pairs_impl(v);
+}
+
+template void sort_pairs(std::vector<std::pair<std::uint64_t, std::uint32_t>>&);
+template void sort_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>&);
+template void sort_pairs(FillVector<std::pair<std::uint64_t, std::uint32_t>>&);
+template void sort_pairs(FillVector<std::pair<std::uint32_t, std::uint32_t>>&);
 
 }  // namespace ember::core

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/fill_vector.hpp"
+
 namespace ember::core {
 
 /// Sorts v ascending in the order of std::pair (key first, then value), the
@@ -18,7 +20,8 @@ namespace ember::core {
 /// radix sort by key alone gives that order; otherwise it falls back to a
 /// comparison sort. Parallel over fixed chunks, so the result never depends
 /// on the thread count (it is unique anyway).
-void sort_pairs(std::vector<std::pair<std::uint64_t, std::uint32_t>>& v);
-void sort_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& v);
+/// For std::vector and FillVector (fill_vector.hpp), keys of 32 or 64 bits.
+template <typename Key, typename Alloc>
+void sort_pairs(std::vector<std::pair<Key, std::uint32_t>, Alloc>& v);
 
 }  // namespace ember::core

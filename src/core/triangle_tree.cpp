@@ -59,7 +59,7 @@ Box32 enclosing_box(const std::array<double, 3>& lo, const std::array<double, 3>
 
 TriangleTree::TriangleTree(std::span<const Box32> boxes) {
   const std::size_t n = boxes.size();
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(n);
+  FillVector<std::pair<std::uint64_t, std::uint32_t>> order(n);  // every slot written below
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) order[i] = {morton_key(boxes[i]), static_cast<std::uint32_t>(i)};
   });

@@ -81,6 +81,28 @@ TEST(SortPairs, MatchesStdSortOn32BitKeys) {
   }
 }
 
+// The FillVector instantiation (unzeroed radix buffer, fill_vector.hpp) gives
+// the same order as the std::vector one, odd and even pass counts alike.
+TEST(SortPairs, FillVectorSortsLikeStdVector) {
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<std::uint64_t> any;
+  std::uniform_int_distribution<std::uint64_t> narrow(0, (1u << 11) - 1);  // one radix pass
+  for (const std::size_t n : {std::size_t{100}, std::size_t{70000}, std::size_t{2 * 65536 + 9}}) {
+    for (const bool one_pass : {false, true}) {
+      for (const bool shuffled : {false, true}) {
+        const auto v = make_pairs<std::uint64_t>(n, [&] { return one_pass ? narrow(rng) : any(rng); }, shuffled, rng);
+        Pairs<std::uint64_t> expected = v;
+        std::sort(expected.begin(), expected.end());
+        core::FillVector<std::pair<std::uint64_t, std::uint32_t>> f(n);  // unwritten until the copy
+        std::copy(v.begin(), v.end(), f.begin());
+        tbb::task_arena(2).execute([&] { core::sort_pairs(f); });
+        ASSERT_EQ(f.size(), n);
+        EXPECT_TRUE(std::equal(f.begin(), f.end(), expected.begin())) << "n = " << n;
+      }
+    }
+  }
+}
+
 TEST(SortPairs, AllKeysEqualLeavesValueOrder) {
   std::mt19937_64 rng(3);
   const auto v = make_pairs<std::uint64_t>(70000, [] { return std::uint64_t{42}; }, false, rng);

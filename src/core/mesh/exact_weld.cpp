@@ -30,6 +30,7 @@
 #include <numeric>
 #include <optional>
 
+#include "core/fill_vector.hpp"
 #include "core/mesh/mesh_output.hpp"
 #include "core/sort_pairs.hpp"
 #include "ember/geometry/exact_order.hpp"
@@ -115,9 +116,10 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
     item_of_vertex[v] = items;
     items += layout.first_corner[v] != kNoCorner;
   }
-  std::vector<Item> item(items);
-  std::vector<Vec3d> rounded(items);  // per item: its rounded position
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> keyed(items);  // (hash of the key, item)
+  // Every item is written below (built corners, then used input vertices).
+  FillVector<Item> item(items);
+  FillVector<Vec3d> rounded(items);  // per item: its rounded position
+  FillVector<std::pair<std::uint32_t, std::uint32_t>> keyed(items);  // (hash of the key, item)
   auto set_key = [&](std::uint32_t i, const std::optional<IntPoint>& g, const Point* exact) {
     const Vec3d x = g ? q.dequantize(*g) : q.dequantize(*exact);
     rounded[i] = {x.x + 0.0, x.y + 0.0, x.z + 0.0};  // -0.0 -> +0.0: equal points, equal keys
@@ -162,7 +164,7 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
     const Vec3d &ra = rounded[a], &rb = rounded[b];
     return ra.x == rb.x && ra.y == rb.y && ra.z == rb.z && same_point(item_point(polys, x), item_point(polys, y));
   };
-  std::vector<std::uint32_t> rep(items);
+  FillVector<std::uint32_t> rep(items);  // every run writes all of its items
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
     std::size_t i = r.begin();
     while (i > 0 && i < items && keyed[i].first == keyed[i - 1].first) ++i;  // runs belong to the block they start in

@@ -117,7 +117,7 @@ EdgePairs group_edges_by_pair(const Cycles& corners, std::span<const OutputPolyg
   EdgePairs g;
   g.poly_of.resize(corners.ids.size());
   g.run_of.assign(corners.ids.size(), EdgePairs::kNoRun);
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
+  FillVector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);  // every slot written below
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, corners.size(), 256), [&](const auto& r) {
     for (std::size_t p = r.begin(); p != r.end(); ++p) {
       const auto ids = corners[p];
