@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <gmpxx.h>
+#include <tbb/task_arena.h>
 
 #include <functional>
 #include <random>
@@ -303,6 +304,50 @@ TEST(SolidProof, ProofAndPromiseGiveTheSameResult) {
     const BooleanResult promised = run_checked(ops, op, promise);
     EXPECT_EQ(proven.stats.solid_operands, 2u);
     EXPECT_EQ(proven.mesh, promised.mesh) << int(op);  // same flags, same computation
+  }
+}
+
+// The concurrent union-find must give the serial answer (per kept triangle,
+// the smallest id of its component across kept neighbours) at any thread
+// count: random neighbour graphs with long chains (deep trees, many
+// concurrent links) and random kept subsets, against a breadth-first search.
+TEST(NeighbourComponents, MatchTheSerialAnswerAtAnyThreadCount) {
+  std::mt19937 rng(17);
+  for (const std::size_t n : {std::size_t{1}, std::size_t{50}, std::size_t{20000}}) {
+    core::GridTriangles grid;
+    grid.neighbors.assign(n, {core::kNoNeighbor, core::kNoNeighbor, core::kNoNeighbor});
+    std::vector<int> slots(n, 0);
+    std::uniform_int_distribution<std::size_t> any(0, n - 1);
+    const auto link = [&](std::size_t a, std::size_t b) {
+      if (a == b || slots[a] == 3 || slots[b] == 3) return;
+      grid.neighbors[a][static_cast<std::size_t>(slots[a]++)] = static_cast<std::uint32_t>(b);
+      grid.neighbors[b][static_cast<std::size_t>(slots[b]++)] = static_cast<std::uint32_t>(a);
+    };
+    for (std::size_t i = 0; i + 1 < n; ++i)
+      if (rng() % 4 != 0) link(i, i + 1);  // chains
+    for (std::size_t k = 0; k < n / 2; ++k) link(any(rng), any(rng));  // and shortcuts
+    std::vector<char> keep(n);
+    for (char& k : keep) k = rng() % 8 != 0;
+    // Expected: breadth-first search from each smallest unvisited kept id.
+    std::vector<std::uint32_t> expected(n, UINT32_MAX);
+    for (std::size_t s = 0; s < n; ++s) {
+      if (!keep[s] || expected[s] != UINT32_MAX) continue;
+      std::vector<std::size_t> queue{s};
+      expected[s] = static_cast<std::uint32_t>(s);
+      for (std::size_t q = 0; q < queue.size(); ++q)
+        for (const std::uint32_t j : grid.neighbors[queue[q]])
+          if (j != core::kNoNeighbor && keep[j] && expected[j] == UINT32_MAX) {
+            expected[j] = static_cast<std::uint32_t>(s);
+            queue.push_back(j);
+          }
+    }
+    for (const int threads : {1, 2, 4, 8}) {
+      std::vector<std::uint32_t> got;
+      tbb::task_arena(threads).execute([&] { got = core::neighbour_components(grid, keep); });
+      ASSERT_EQ(got.size(), n);
+      for (std::size_t i = 0; i < n; ++i)
+        if (keep[i]) ASSERT_EQ(got[i], expected[i]) << "n " << n << ", triangle " << i << ", threads " << threads;
+    }
   }
 }
 
