@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <numeric>
 
 #include "core/mesh/vertex_index.hpp"
 #include "core/sort_pairs.hpp"
@@ -48,6 +49,32 @@ bool rounded_area_is_zero(const std::vector<Vec3d>& pos, std::span<const std::ui
 }
 
 namespace {
+
+/// The pass-through triangles in polygon order (most of a lightly touched
+/// result), written in parallel at offsets counted per block; their corners
+/// are pinned (no collinear removal: the regions do not see their edges).
+void collect_direct(std::span<const OutputPolygon> polys, const Cycles& cycles, const std::vector<char>& through,
+                    RegionTriangles& direct, std::vector<char>& pinned) {
+  constexpr std::size_t kBlock = 4096;
+  const std::size_t n = polys.size(), blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::size_t> at(blocks + 1, 0);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    for (std::size_t p = b * kBlock; p < std::min(n, (b + 1) * kBlock); ++p) at[b + 1] += through[p] != 0;
+  });
+  std::partial_sum(at.begin(), at.end(), at.begin());
+  direct.tris.resize(at.back());
+  direct.source.resize(at.back());
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    std::size_t slot = at[b];
+    for (std::size_t p = b * kBlock; p < std::min(n, (b + 1) * kBlock); ++p) {
+      if (!through[p]) continue;
+      const auto c = cycles[p];
+      direct.tris[slot] = polys[p].flip ? std::array{c[0], c[2], c[1]} : std::array{c[0], c[1], c[2]};
+      direct.source[slot++] = polys[p].id;
+      for (const std::uint32_t v : c) std::atomic_ref<char>(pinned[v]).store(1, std::memory_order_relaxed);
+    }
+  });
+}
 
 /// The indexed mesh: the pass-through triangles (`direct`, in polygon order),
 /// then the regions' triangles in region order (a region in
@@ -147,13 +174,7 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
   const std::vector<char> through = pass_through_triangles(polys, verts, pairs, cycles);
   RegionTriangles direct;
   std::vector<char> pinned(verts.exact.size(), 0);
-  for (std::uint32_t p = 0; p < polys.size(); ++p) {
-    if (!through[p]) continue;
-    const auto c = cycles[p];
-    direct.tris.push_back(polys[p].flip ? std::array{c[0], c[2], c[1]} : std::array{c[0], c[1], c[2]});
-    direct.source.push_back(polys[p].id);
-    for (const std::uint32_t v : c) pinned[v] = 1;
-  }
+  collect_direct(polys, cycles, through, direct, pinned);
   Regions regions = build_regions(polys, cycles, verts, through);
   const std::vector<Removal> removals = remove_collinear_vertices(regions, verts.exact.size(), pinned);
   out.stats.regions_ms = ms_since(clock);

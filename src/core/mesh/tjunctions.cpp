@@ -168,12 +168,16 @@ VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const Ou
   // 0: used by operand 1 only, 1: by both, 2: by operand 0 only; the vertices
   // of operand 1's polygons are then classes 0-1 (Part::kLow), operand 0's
   // classes 1-2 (Part::kHigh).
+  // Settled polygons are left out: a vertex only they use is no member, and
+  // no other operand's polygon touches one (OutputPolygon::settled), so the
+  // other users of its corners are of its own operand.
   std::vector<std::uint8_t> used_by(verts.exact.size(), 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 1024), [&](const auto& r) {
     for (std::size_t p = r.begin(); p != r.end(); ++p)
-      for (const std::uint32_t v : verts.corners[p])
-        std::atomic_ref<std::uint8_t>(used_by[v]).fetch_or(static_cast<std::uint8_t>(1u << polys[p].operand),
-                                                           std::memory_order_relaxed);
+      if (!polys[p].settled)
+        for (const std::uint32_t v : verts.corners[p])
+          std::atomic_ref<std::uint8_t>(used_by[v]).fetch_or(static_cast<std::uint8_t>(1u << polys[p].operand),
+                                                             std::memory_order_relaxed);
   });
   constexpr std::uint8_t kClass[4] = {0, 2, 0, 1};  // by used_by; 0 (unused) cannot occur
   std::vector<std::uint8_t> member_class(everyone.size());
