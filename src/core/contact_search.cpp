@@ -89,9 +89,15 @@ class Search {
     }
   }
 
-  /// All pairs with one triangle under a and one under b (same depth, disjoint).
+  /// All pairs with one triangle under a and one under b (same depth,
+  /// disjoint), if their boxes overlap: tested here, before the call, since
+  /// most node pairs do not and the test costs less than a call.
   void cross(std::size_t a, std::size_t b, int depth, std::size_t& examined) {
-    if (!overlap(tree().node(a), tree().node(b)) || done()) return;
+    if (overlap(tree().node(a), tree().node(b))) cross_overlapping(a, b, depth, examined);
+  }
+
+  void cross_overlapping(std::size_t a, std::size_t b, int depth, std::size_t& examined) {
+    if (done()) return;
     if (depth == tree().depth()) {
       leaf_pairs(a, b, examined);
       return;

@@ -35,10 +35,11 @@ struct Partners {
 using PairSink = tbb::enumerable_thread_specific<std::vector<std::pair<std::uint32_t, std::uint32_t>>>;
 
 /// Collects every pair of A x B that meets (boxes first, then exactly:
-/// triangles_meet), in subtrees a of A at depth da and b of B at depth db.
+/// triangles_meet), in subtrees a of A at depth da and b of B at depth db,
+/// whose boxes overlap (the caller tests them: most child pairs do not
+/// overlap, and the test costs less than a call).
 void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32_t a_base, std::size_t a, int da,
                    const TriangleTree& B, std::uint32_t b_base, std::size_t b, int db, PairSink& sink) {
-  if (!overlap(A.node(a), B.node(b))) return;
   const bool a_leaf = da == A.depth(), b_leaf = db == B.depth();
   if (a_leaf && b_leaf) {
     const std::size_t ab = A.leaf_slots(a).first, bb = B.leaf_slots(b).first;
@@ -69,9 +70,11 @@ void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32
   const bool split_a = !a_leaf && (b_leaf || A.depth() - da >= B.depth() - db);
   const auto child = [&](int c) {
     if (split_a) {
-      meeting_pairs(grid, A, a_base, 2 * a + 1 + c, da + 1, B, b_base, b, db, sink);
+      const std::size_t ac = 2 * a + 1 + static_cast<std::size_t>(c);
+      if (overlap(A.node(ac), B.node(b))) meeting_pairs(grid, A, a_base, ac, da + 1, B, b_base, b, db, sink);
     } else {
-      meeting_pairs(grid, A, a_base, a, da, B, b_base, 2 * b + 1 + c, db + 1, sink);
+      const std::size_t bc = 2 * b + 1 + static_cast<std::size_t>(c);
+      if (overlap(A.node(a), B.node(bc))) meeting_pairs(grid, A, a_base, a, da, B, b_base, bc, db + 1, sink);
     }
   };
   if ((split_a ? A.depth() - da : B.depth() - db) >= kParallelLevels) {
@@ -90,7 +93,8 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
   for (std::size_t a = 0; a < operands; ++a)
     for (std::size_t b = a + 1; b < operands; ++b) {
       const TriangleTree &A = trees.tree[a], &B = trees.tree[b];
-      if (!A.empty() && !B.empty()) meeting_pairs(grid, A, trees.begin[a], 0, 0, B, trees.begin[b], 0, 0, sink);
+      if (!A.empty() && !B.empty() && overlap(A.node(0), B.node(0)))
+        meeting_pairs(grid, A, trees.begin[a], 0, 0, B, trees.begin[b], 0, 0, sink);
     }
   // Counting sort by triangle, then each list ascending (lists are short,
   // and the result does not depend on the order pairs were found in).
