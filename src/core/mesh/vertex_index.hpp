@@ -82,21 +82,32 @@ class VertexIndex {
     inverse_cell_ = 1 / cell_;
     if (!std::isfinite(inverse_cell_)) inverse_cell_ = 0x1p1000;  // a subnormal cell: cells clamp to the grid's edge
     const auto n = static_cast<std::uint32_t>(pos_.size());
-    cells_.resize(n);
+    FillVector<std::pair<std::uint64_t, std::uint32_t>> cells(n);  // (cell key << 2 | class, member), sorted
     // Sort key: the cell (60 bits), then the class (2 bits).
-    for (std::uint32_t i = 0; i < n; ++i) cells_[i] = {key(cell_of(pos_[i])) << 2 | class_of(member_class, i), i};
-    sort_pairs(cells_);
-    // Open-addressing table: occupied cell key -> its run in cells_.
+    for (std::uint32_t i = 0; i < n; ++i) cells[i] = {key(cell_of(pos_[i])) << 2 | class_of(member_class, i), i};
+    sort_pairs(cells);
+    // Members in cell order, so that a query scans its cells' positions and
+    // ids contiguously (one indirection less per candidate, and cache lines
+    // that hold neighbours).
+    std::vector<Vec3d> by_cell_pos(n);
+    std::vector<std::uint32_t> by_cell_id(n);
+    for (std::uint32_t i = 0; i < n; ++i) {
+      by_cell_pos[i] = pos_[cells[i].second];
+      by_cell_id[i] = ids_[cells[i].second];
+    }
+    pos_ = std::move(by_cell_pos);
+    ids_ = std::move(by_cell_id);
+    // Open-addressing table: occupied cell key -> its run of members.
     std::size_t runs = 0;
-    for (std::size_t i = 0; i < n; ++i) runs += i == 0 || cells_[i].first >> 2 != cells_[i - 1].first >> 2;
+    for (std::size_t i = 0; i < n; ++i) runs += i == 0 || cells[i].first >> 2 != cells[i - 1].first >> 2;
     std::size_t size = 16;
     while (size < 2 * runs) size *= 2;
     slots_.assign(size, Slot{});
     for (std::uint32_t i = 0; i < n;) {
-      const std::uint64_t cell = cells_[i].first >> 2;
+      const std::uint64_t cell = cells[i].first >> 2;
       Slot slot{cell, i, i, i, i};
-      while (slot.end < n && cells_[slot.end].first >> 2 == cell) {
-        const auto c = static_cast<std::uint32_t>(cells_[slot.end].first & 3);
+      while (slot.end < n && cells[slot.end].first >> 2 == cell) {
+        const auto c = static_cast<std::uint32_t>(cells[slot.end].first & 3);
         ++slot.end;
         if (c < 1) slot.class1 = slot.end;
         if (c < 2) slot.class2 = slot.end;
@@ -150,7 +161,7 @@ class VertexIndex {
         lo.z > b.hi.z)
       return;
     const std::array<std::int64_t, 3> c0 = cell_of(lo), c1 = cell_of(hi);
-    auto inside = [&](std::uint32_t i) {  // no short-circuits: the outcomes follow no pattern
+    auto inside = [&](std::uint32_t i) {  // i in cell order; no short-circuits: the outcomes follow no pattern
       const Vec3d& p = pos_[i];
       return (p.x >= lo.x) & (p.x <= hi.x) & (p.y >= lo.y) & (p.y <= hi.y) & (p.z >= lo.z) & (p.z <= hi.z);
     };
@@ -161,7 +172,7 @@ class VertexIndex {
           const std::uint32_t begin = part == Part::kHigh ? slot.class1 : slot.begin;
           const std::uint32_t end = part == Part::kLow ? slot.class2 : slot.end;
           for (std::uint32_t i = begin; i < end; ++i)
-            if (inside(cells_[i].second)) f(ids_[cells_[i].second]);
+            if (inside(i)) f(ids_[i]);
         }
   }
 
@@ -185,18 +196,17 @@ class VertexIndex {
            static_cast<std::uint64_t>(c[2]);
   }
 
-  std::vector<std::uint32_t> ids_;  ///< member i is output vertex ids_[i]
-  std::vector<Vec3d> pos_;
+  std::vector<std::uint32_t> ids_;  ///< member i is output vertex ids_[i] (in cell order once built)
+  std::vector<Vec3d> pos_;          ///< its rounded position
   Vec3d lo_{}, hi_{};
   struct Bounds {  ///< empty: lo > hi
     Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   };
   std::array<Bounds, 3> bounds_{};  ///< by Part
   double cell_ = 1, inverse_cell_ = 1;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> cells_;  ///< (cell key << 2 | class, member), sorted
   struct Slot {
     std::uint64_t key = 0;
-    std::uint32_t begin = 0, end = 0;  ///< run in cells_; end == 0: empty slot
+    std::uint32_t begin = 0, end = 0;  ///< run of members (cell order); end == 0: empty slot
     std::uint32_t class1 = 0, class2 = 0;  ///< where classes 1 and 2 begin in the run
   };
   std::vector<Slot> slots_;
