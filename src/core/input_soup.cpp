@@ -74,29 +74,36 @@ void validate_operands(std::span<const Mesh> operands) {
 EdgeMatching match_edges(const GridInput& gi) {
   const std::size_t operands = gi.vertex_count.size();
   EdgeMatching m;
+  const std::size_t n = gi.vertex_ids.size();
   m.open.assign(operands, 0);
-  m.manifold.assign(gi.vertex_ids.size(), 0);
-  m.partner.assign(gi.vertex_ids.size(), {kNoNeighbor, kNoNeighbor, kNoNeighbor});
+  m.manifold.resize(n);
+  m.partner.resize(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t t = r.begin(); t != r.end(); ++t) m.partner[t] = {kNoNeighbor, kNoNeighbor, kNoNeighbor};
+  });
   tbb::parallel_for(std::size_t{0}, operands, [&](std::size_t o) {
     const std::size_t begin = gi.operand_begin[o];
     WeldedTriangles welded;
-    welded.ids.assign(gi.vertex_ids.begin() + static_cast<std::ptrdiff_t>(begin),
-                      gi.vertex_ids.begin() + static_cast<std::ptrdiff_t>(gi.operand_begin[o + 1]));
+    welded.ids = std::span(gi.vertex_ids).subspan(begin, gi.operand_begin[o + 1] - begin);
     welded.vertex_count = gi.vertex_count[o];
-    // Called concurrently: a triangle's three edges may be matched by
-    // different threads, so its manifold bits are or-ed atomically.
+    // Called concurrently, but each directed edge use belongs to one
+    // undirected edge: every partner slot has one writer.
     for_each_edge(welded, [&](std::span<const EdgeUse> uses) {
       int balance = 0;
       for (const EdgeUse& u : uses) balance += u.forward ? 1 : -1;
       if (balance != 0) std::atomic_ref<std::size_t>(m.open[o]).fetch_add(1, std::memory_order_relaxed);
       if (uses.size() != 2 || uses[0].forward == uses[1].forward) return;
-      for (int i = 0; i < 2; ++i) {
-        const EdgeUse& u = uses[i];
-        std::atomic_ref<std::uint8_t>(m.manifold[begin + u.tri])
-            .fetch_or(static_cast<std::uint8_t>(1u << u.edge), std::memory_order_relaxed);
-        m.partner[begin + u.tri][u.edge] = static_cast<std::uint32_t>(begin + uses[1 - i].tri);
-      }
+      for (int i = 0; i < 2; ++i)
+        m.partner[begin + uses[i].tri][uses[i].edge] = static_cast<std::uint32_t>(begin + uses[1 - i].tri);
     });
+  });
+  // The manifold bits are the edges that found a partner.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t t = r.begin(); t != r.end(); ++t) {
+      std::uint8_t bits = 0;
+      for (int e = 0; e < 3; ++e) bits |= static_cast<std::uint8_t>((m.partner[t][e] != kNoNeighbor) << e);
+      m.manifold[t] = bits;
+    }
   });
   return m;
 }

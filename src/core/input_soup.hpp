@@ -31,7 +31,7 @@ struct EdgeMatching {
   std::vector<std::uint8_t> manifold;
   /// Per triangle (GridInput order), per edge k with its manifold bit set:
   /// the other triangle using it (GridInput index); kNoNeighbor otherwise.
-  std::vector<std::array<std::uint32_t, 3>> partner;
+  FillVector<std::array<std::uint32_t, 3>> partner;
 };
 EdgeMatching match_edges(const GridInput& gi);
 

@@ -10,12 +10,13 @@
 #include <span>
 #include <vector>
 
+#include "core/fill_vector.hpp"
 #include "ember/geometry/plane.hpp"
 
 namespace ember::core {
 
 struct WeldedTriangles {
-  std::vector<std::array<std::uint32_t, 3>> ids;  ///< per triangle, its corners' vertex ids
+  std::span<const std::array<std::uint32_t, 3>> ids;  ///< per triangle, its corners' vertex ids
   std::size_t vertex_count = 0;
 };
 
@@ -40,7 +41,7 @@ void for_each_edge(const WeldedTriangles& welded, F&& f) {
     for (int e = 0; e < 3; ++e)
       if (v[e] != v[(e + 1) % 3]) ++start[std::min(v[e], v[(e + 1) % 3]) + 1];
   for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
-  std::vector<EdgeUse> uses(start.back());
+  FillVector<EdgeUse> uses(start.back());  // every slot written by the fill below
   std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
   for (std::uint32_t t = 0; t < welded.ids.size(); ++t)
     for (int e = 0; e < 3; ++e) {
