@@ -146,10 +146,11 @@ std::size_t weld_grid_vertices(const GridVertices& g, std::vector<std::uint32_t>
   sort_pairs(by_x);
   id.assign(g.pos.size(), 0);
   std::uint32_t next = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t v = by_yz[by_x[i].second].second;
-    if (i > 0 && !(g.pos[v] == g.pos[by_yz[by_x[i - 1].second].second])) ++next;
+  for (std::size_t i = 0, prev = 0; i < n; ++i) {
+    const std::uint32_t v = by_yz[by_x[i].second].second;  // i-th in (x, y, z, index) order
+    if (i > 0 && !(g.pos[v] == g.pos[prev])) ++next;
     id[v] = next;
+    prev = v;
   }
   return n == 0 ? 0 : next + 1;
 }

@@ -55,26 +55,31 @@ void unite(Parents& parent, std::uint32_t a, std::uint32_t b) {
   }
 }
 
-/// The serial pass: the same answer with plain stores, for one thread (the
-/// concurrent pass costs 1.5x its instructions there).
-std::vector<std::uint32_t> serial_components(const GridTriangles& grid, const std::vector<char>& keep) {
-  const auto n = static_cast<std::uint32_t>(keep.size());
-  Parents parent(n);
-  for (std::uint32_t i = 0; i < n; ++i) parent[i] = i;
-  const auto root = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (std::uint32_t i = 0; i < n; ++i) {
+/// Calls f(i, j) for each kept triangle i in [begin, end) and each kept
+/// neighbour j > i: neighbours are mutual (both ends of a manifold edge), so
+/// every pair once.
+template <typename F>
+void each_kept_pair(const GridTriangles& grid, const std::vector<char>& keep, std::size_t begin, std::size_t end,
+                    F&& f) {
+  for (std::size_t i = begin; i != end; ++i) {
     if (!keep[i]) continue;
-    for (const std::uint32_t j : grid.neighbors[i]) {
-      if (j == kNoNeighbor || j < i || !keep[j]) continue;
-      const std::uint32_t ri = root(i), rj = root(j);
-      if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
-    }
+    for (const std::uint32_t j : grid.neighbors[i])
+      if (j != kNoNeighbor && j > i && keep[j]) f(static_cast<std::uint32_t>(i), j);
   }
+}
+
+/// The serial pass: the same finds, links by plain stores, for one thread
+/// (the concurrent pass costs 1.5x its instructions there).
+std::vector<std::uint32_t> serial_components(const GridTriangles& grid, const std::vector<char>& keep) {
+  const std::size_t n = keep.size();
+  Parents parent(n);
+  for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<std::uint32_t>(i);
+  each_kept_pair(grid, keep, 0, n, [&](std::uint32_t i, std::uint32_t j) {
+    const std::uint32_t ri = find(parent, i), rj = find(parent, j);
+    if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
+  });
   // In ascending order every smaller entry already holds its root.
-  for (std::uint32_t i = 0; i < n; ++i) parent[i] = parent[parent[i]];
+  for (std::size_t i = 0; i < n; ++i) parent[i] = parent[parent[i]];
   return parent;
 }
 
@@ -88,14 +93,7 @@ std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, const
     for (std::size_t i = r.begin(); i != r.end(); ++i) parent[i] = static_cast<std::uint32_t>(i);
   });
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      if (!keep[i]) continue;
-      for (const std::uint32_t j : grid.neighbors[i]) {
-        // Neighbours are mutual (both ends of a manifold edge): each pair once.
-        if (j == kNoNeighbor || j < i || !keep[j]) continue;
-        unite(parent, static_cast<std::uint32_t>(i), j);
-      }
-    }
+    each_kept_pair(grid, keep, r.begin(), r.end(), [&](std::uint32_t i, std::uint32_t j) { unite(parent, i, j); });
   });
   // Every root is final now: point each kept entry at it (find only reads
   // and halves paths, which stays correct under the concurrent halving).

@@ -345,8 +345,11 @@ TEST(NeighbourComponents, MatchTheSerialAnswerAtAnyThreadCount) {
       std::vector<std::uint32_t> got;
       tbb::task_arena(threads).execute([&] { got = core::neighbour_components(grid, keep); });
       ASSERT_EQ(got.size(), n);
-      for (std::size_t i = 0; i < n; ++i)
-        if (keep[i]) ASSERT_EQ(got[i], expected[i]) << "n " << n << ", triangle " << i << ", threads " << threads;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (keep[i]) {
+          ASSERT_EQ(got[i], expected[i]) << "n " << n << ", triangle " << i << ", threads " << threads;
+        }
+      }
     }
   }
 }
