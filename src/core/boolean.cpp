@@ -5,10 +5,12 @@
 #include <tbb/info.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -231,6 +233,16 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     if (may_all_be_solid)
       if (std::optional<std::vector<std::uint32_t>> ranges = core::operand_ranges(root.soup, operands.size()))
         arena.execute([&] { trees = core::build_operand_trees(std::move(*ranges), grid.corners); });
+    // With every operand possibly solid, the solid path starts alongside the
+    // proof, on the premise the proof is about to establish: a small input's
+    // proof and solve are chains of short parallel loops, which a second
+    // thread joins late (waking a sleeping worker costs tens of
+    // microseconds), so two independent tasks keep the threads busier than
+    // either alone. Same inputs as after the proof, so the same result; a
+    // failed proof abandons the run (solve_solid's `abandon`) and the
+    // general path solves as before.
+    std::optional<std::vector<core::OutputPolygon>> speculative;
+    bool speculated = false;
     if (options.detect_solid) {
       // Closed operands not promised solid are proven solid (or not) exactly,
       // all at once: a small operand's proof alone cannot keep the threads
@@ -242,20 +254,33 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       if (!unproven.empty()) {
         report(options, "solid check", 0.1);
         std::vector<core::SolidFinding> findings(unproven.size());
-        arena.execute([&] {
-          tbb::parallel_for(std::size_t{0}, unproven.size(),
-                            [&](std::size_t k) {
-                              findings[k] = core::check_solid(root, grid, unproven[k],
-                                                              trees ? &trees->tree[unproven[k]] : nullptr);
-                            });
-        });
+        std::atomic<bool> disproved{false};
+        const auto prove = [&] {
+          tbb::parallel_for(std::size_t{0}, unproven.size(), [&](std::size_t k) {
+            findings[k] = core::check_solid(root, grid, unproven[k], trees ? &trees->tree[unproven[k]] : nullptr);
+            if (findings[k].verdict != core::SolidVerdict::Solid) disproved = true;
+          });
+          proved = std::chrono::steady_clock::now();
+        };
+        if (trees && threads > 1) {  // one thread would run them one after the other
+          speculated = true;
+          core::SolveContext premise = ctx;
+          premise.solid.assign(operands.size(), 1);
+          arena.execute([&] {
+            tbb::parallel_invoke(prove, [&] {
+              speculative = core::solve_solid(root.soup, grid, root.box, premise, *trees, &disproved);
+            });
+          });
+        } else {
+          arena.execute(prove);
+        }
         for (std::size_t k = 0; k < unproven.size(); ++k)
           ctx.solid[unproven[k]] = record_proof(findings[k], unproven[k], result);
       }
     }
     for (const char s : ctx.solid) result.stats.solid_operands += s != 0;
     if (topology) topology->solid = ctx.solid;
-    proved = std::chrono::steady_clock::now();
+    if (!speculated) proved = std::chrono::steady_clock::now();
     result.stats.proof_ms = ms_between(setup_done, proved);
     report(options, "solve", 0.2);
     arena.execute([&] {
@@ -264,7 +289,13 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       // something degenerately; the subdivision then solves as always.
       const bool all_solid = std::all_of(ctx.solid.begin(), ctx.solid.end(), [](char s) { return s != 0; });
       if (!all_solid) trees.reset();  // the subdivision does not use them
-      if (trees) {
+      if (trees && speculated) {
+        if (speculative) {  // else the solid path declined: the subdivision solves
+          polys = std::move(*speculative);
+          result.stats.solid_path = true;
+          return;
+        }
+      } else if (trees) {
         if (std::optional<std::vector<core::OutputPolygon>> direct =
                 core::solve_solid(root.soup, grid, root.box, ctx, *trees)) {
           polys = std::move(*direct);

@@ -177,15 +177,15 @@ std::uint32_t untouched_neighbour_along(const Polygon& f, const Polygon& t, cons
 class SolidSolver {
  public:
   SolidSolver(const Soup& soup, const GridTriangles& grid, const Box& box, const SolveContext& ctx,
-              const OperandTrees& trees, const Partners& partners)
-      : soup_(soup), grid_(grid), ctx_(ctx), trees_(trees), partners_(partners), operands_(ctx.operands),
+              const OperandTrees& trees, const Partners& partners, const std::atomic<bool>& stop)
+      : soup_(soup), grid_(grid), ctx_(ctx), trees_(trees), partners_(partners), stop_(stop), operands_(ctx.operands),
         tracer_{soup, trees, box, ctx.operands}, touched_(soup.size()) {
     for (std::uint32_t i = 0; i < touched_.size(); ++i) touched_[i] = partners.touched(i);
     comps_ = untouched_components(grid, touched_);
   }
 
   /// Step 2: one trace per component of untouched triangles. False if a
-  /// trace found no non-degenerate path.
+  /// trace found no non-degenerate path (or the run was abandoned).
   bool classify_components() {
     comp_w_.assign(2 * operands_ * comps_.roots.size(), 0);  // per component: front, then back
     std::atomic<bool> failed{false};
@@ -193,7 +193,7 @@ class SolidSolver {
       TraceScratch sc;
       Polygon t;
       Wnv front, back;
-      for (std::size_t k = r.begin(); k != r.end() && !failed.load(); ++k) {
+      for (std::size_t k = r.begin(); k != r.end() && !failed.load() && !stop_.load(); ++k) {
         const std::uint32_t id = comps_.roots[k];
         const std::array<IntPoint, 3>& c = grid_.corners[id];
         assign_triangle(c[0], c[1], c[2], t);
@@ -205,13 +205,13 @@ class SolidSolver {
         std::copy(back.begin(), back.end(), comp_w_.begin() + static_cast<std::ptrdiff_t>(2 * operands_ * k + operands_));
       }
     });
-    return !failed;
+    return !failed && !stop_.load();
   }
 
   /// Step 3: touched triangles, in Morton order per operand (partners repeat
   /// from one triangle to the next), in fixed chunks: each chunk's output is
   /// ordered, so the result does not depend on the schedule. False if a
-  /// trace failed.
+  /// trace failed (or the run was abandoned).
   bool solve_touched(std::vector<std::vector<OutputPolygon>>& chunk_out) const {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;  // (operand, first slot)
     for (std::uint32_t o = 0; o < operands_; ++o)
@@ -220,10 +220,10 @@ class SolidSolver {
     std::atomic<bool> failed{false};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
       ChunkScratch cs(grid_, operands_);
-      for (std::size_t c = r.begin(); c != r.end() && !failed.load(); ++c)
+      for (std::size_t c = r.begin(); c != r.end() && !failed.load() && !stop_.load(); ++c)
         if (!solve_chunk(chunks[c].first, chunks[c].second, cs, chunk_out[c], failed)) failed = true;
     });
-    return !failed;
+    return !failed && !stop_.load();
   }
 
   /// Step 4: the kept untouched triangles by id, then the chunks in order.
@@ -388,6 +388,7 @@ class SolidSolver {
   const SolveContext& ctx_;
   const OperandTrees& trees_;
   const Partners& partners_;
+  const std::atomic<bool>& stop_;  ///< abandon the run (solve_solid)
   std::size_t operands_;
   Tracer tracer_;
   std::vector<char> touched_;
@@ -409,12 +410,16 @@ std::optional<std::vector<std::uint32_t>> operand_ranges(const Soup& soup, std::
 }
 
 std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const GridTriangles& grid, const Box& box,
-                                                      const SolveContext& ctx, const OperandTrees& trees) {
+                                                      const SolveContext& ctx, const OperandTrees& trees,
+                                                      const std::atomic<bool>* abandon) {
+  const std::atomic<bool> never{false};
+  const std::atomic<bool>& stop = abandon ? *abandon : never;
   // 1. Which triangles another operand's triangles meet, and which.
   const Partners partners = find_partners(grid, trees, soup.size());
-  SolidSolver solver(soup, grid, box, ctx, trees, partners);
+  if (stop.load()) return std::nullopt;
+  SolidSolver solver(soup, grid, box, ctx, trees, partners, stop);
   std::vector<std::vector<OutputPolygon>> touched_out;
-  if (!solver.classify_components() || !solver.solve_touched(touched_out)) return std::nullopt;
+  if (!solver.classify_components() || !solver.solve_touched(touched_out) || stop.load()) return std::nullopt;
   return solver.output(std::move(touched_out));
 }
 

@@ -29,6 +29,7 @@
 // Every decision is the exact predicate the leaves use; the output is the
 // same point set as the subdivision's (the pieces differ: no split-plane
 // cuts), so the mesh stage makes the same surfaces.
+#include <atomic>
 #include <optional>
 #include <vector>
 
@@ -44,9 +45,12 @@ namespace ember::core {
 /// boundary no polygon touches. The pieces on the result's surface, in a
 /// deterministic order (unbuilt whole triangles and explicit pieces; no
 /// paths). nullopt if some piece found no non-degenerate trace (the caller
-/// then solves on the subdivision instead).
+/// then solves on the subdivision instead), or if `abandon` was set: a run
+/// started before the proof of its premise ended stops early once the proof
+/// fails (boolean.cpp), checking the flag between steps and within them.
 std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const GridTriangles& grid, const Box& box,
-                                                      const SolveContext& ctx, const OperandTrees& trees);
+                                                      const SolveContext& ctx, const OperandTrees& trees,
+                                                      const std::atomic<bool>* abandon = nullptr);
 
 /// Operand o's polygons of the root soup are [begin[o], begin[o + 1]);
 /// nullopt if the soup does not list the operands in order.
