@@ -137,6 +137,9 @@ struct BooleanStats {
   double time_ms = 0;  ///< quantization + core + export
   /// Phases of time_ms: setup (validation, quantization, triangles, closedness),
   /// solid proof, the exact core, and output (mesh stage or polygon export).
+  /// At more than one thread the solid path may start alongside the proof
+  /// (docs/core.md, "Pipeline"): proof_ms then ends when the proof does and
+  /// solve_ms is the rest of the solve.
   double setup_ms = 0, proof_ms = 0, solve_ms = 0, output_ms = 0;
   /// Steps of the mesh stage inside output_ms: exact weld, T-junction
   /// insertion, region merge with collinear-vertex removal, triangulation and
