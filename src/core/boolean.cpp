@@ -155,8 +155,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     gi = core::to_grid(operands, q);
     result.stats.grid_step = q.grid_spacing();
     result.stats.operands.resize(operands.size());
-    core::audit_quantization(operands, gi, q, result.stats.operands, result.warnings);
-    edges = core::match_edges(gi);
+    // Independent: side by side (an exception from the audit reaches the caller).
+    tbb::parallel_invoke([&] { core::audit_quantization(operands, gi, q, result.stats.operands, result.warnings); },
+                         [&] { edges = core::match_edges(gi); });
     in = core::build_soup(gi, edges);
   });
   for (const OperandReport& r : result.stats.operands) {

@@ -155,12 +155,13 @@ std::size_t weld_grid_vertices(const GridVertices& g, std::vector<std::uint32_t>
   return n == 0 ? 0 : next + 1;
 }
 
-void bound(GridInput& gi, const GridVertices& g) {
+/// Widens [lo, hi] to hold the used grid vertices.
+void bound(const GridVertices& g, std::array<std::int64_t, 3>& lo, std::array<std::int64_t, 3>& hi) {
   for (const std::uint32_t v : g.used) {
     const std::int64_t c[3] = {g.pos[v].x, g.pos[v].y, g.pos[v].z};
     for (int a = 0; a < 3; ++a) {
-      gi.lo[a] = std::min(gi.lo[a], c[a]);
-      gi.hi[a] = std::max(gi.hi[a], c[a]);
+      lo[a] = std::min(lo[a], c[a]);
+      hi[a] = std::max(hi[a], c[a]);
     }
   }
 }
@@ -204,23 +205,35 @@ GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q) {
     gi.operand_begin.push_back(gi.operand_begin.back() + m.indices.size() - 2 * m.face_count());
   gi.triangles.resize(gi.operand_begin.back());
   gi.vertex_ids.resize(gi.operand_begin.back());
-  std::vector<std::uint32_t> id;
-  for (std::size_t o = 0; o < operands.size(); ++o) {
+  // The operands side by side: each one's chain (quantize, weld, triangulate)
+  // has serial steps and short loops, which a small operand's alone cannot
+  // spread over the threads. Each writes its own slice; the box is joined after.
+  gi.vertex_count.resize(operands.size());
+  std::vector<std::array<std::array<std::int64_t, 3>, 2>> box(operands.size(), {gi.lo, gi.hi});
+  tbb::parallel_for(std::size_t{0}, operands.size(), [&](std::size_t o) {
     const GridVertices g = quantize_used(operands[o], q);
-    bound(gi, g);
-    gi.vertex_count.push_back(weld_grid_vertices(g, id));
+    bound(g, box[o][0], box[o][1]);
+    std::vector<std::uint32_t> id;
+    gi.vertex_count[o] = weld_grid_vertices(g, id);
     triangulate_faces(operands[o], static_cast<std::uint32_t>(o), g, id, gi.operand_begin[o], gi);
-  }
+  });
+  for (const auto& [lo, hi] : box)
+    for (int a = 0; a < 3; ++a) {
+      gi.lo[a] = std::min(gi.lo[a], lo[a]);
+      gi.hi[a] = std::max(gi.hi[a], hi[a]);
+    }
   return gi;
 }
 
 void audit_quantization(std::span<const Mesh> operands, const GridInput& grid, const Quantizer& q,
                         std::vector<OperandReport>& reports, std::vector<std::string>& warnings) {
-  for (std::size_t o = 0; o < operands.size(); ++o) {
-    OperandReport& r = reports[o];
-    // {with area, collapsed, flipped}: counts, so any split adds up the same.
-    using Counts = std::array<std::size_t, 3>;
-    const Counts counts = tbb::parallel_reduce(
+  // {with area, collapsed, flipped}: counts, so any split adds up the same.
+  // The operands side by side (a small one's reduction alone is short); the
+  // reports and warnings follow in operand order.
+  using Counts = std::array<std::size_t, 3>;
+  std::vector<Counts> per_operand(operands.size());
+  tbb::parallel_for(std::size_t{0}, operands.size(), [&](std::size_t o) {
+    per_operand[o] = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(grid.operand_begin[o], grid.operand_begin[o + 1], 4096), Counts{},
         [&](const tbb::blocked_range<std::size_t>& range, Counts c) {
           for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -232,6 +245,10 @@ void audit_quantization(std::span<const Mesh> operands, const GridInput& grid, c
           return c;
         },
         [](Counts a, const Counts& b) { return Counts{a[0] + b[0], a[1] + b[1], a[2] + b[2]}; });
+  });
+  for (std::size_t o = 0; o < operands.size(); ++o) {
+    OperandReport& r = reports[o];
+    const Counts& counts = per_operand[o];
     const std::size_t with_area = counts[0];
     r.collapsed_triangles = counts[1];
     r.flipped_triangles = counts[2];
