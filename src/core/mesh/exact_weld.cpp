@@ -129,7 +129,10 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
                      std::bit_cast<std::uint64_t>(rounded[i].z));
     keyed[i] = {h, i};
   };
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const auto& r) {
+  // Fine grain: the work is the rounding of built corners (~850 instructions
+  // each), and the built polygons come in a cluster (the solid path emits
+  // its cut pieces after the whole triangles, which cost nothing here).
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 16), [&](const auto& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const OutputPolygon& p = polys[i];
       if (folded(p, ids)) continue;
@@ -165,7 +168,9 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
     return ra.x == rb.x && ra.y == rb.y && ra.z == rb.z && same_point(item_point(polys, x), item_point(polys, y));
   };
   FillVector<std::uint32_t> rep(items);  // every run writes all of its items
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
+  // Runs of equal hashes are compared exactly (same_point): a few thousand
+  // items are work enough to share.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 512), [&](const auto& r) {
     std::size_t i = r.begin();
     while (i > 0 && i < items && keyed[i].first == keyed[i - 1].first) ++i;  // runs belong to the block they start in
     std::vector<std::uint32_t> head, smallest, class_of;  // per class of the run: an item, its smallest corner
