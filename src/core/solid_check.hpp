@@ -79,8 +79,21 @@ struct ContactTriangle {
   /// (vertex_stars.hpp), so triangles sharing that vertex never meet
   /// improperly. 0 (nothing certified) unless certify_embedded_stars set it.
   std::uint8_t embedded = 0;
+  /// The triangle's extent along the four diagonals (1,1,1), (1,1,-1),
+  /// (1,-1,1), (-1,1,1): lowest projections, then highest. With the box it
+  /// bounds the triangle by 14 planes; long slivers across the axes, whose
+  /// boxes overlap many others', are told apart by it (diagonally_apart).
+  std::array<std::int32_t, 8> diagonal{};
 };
 ContactTriangle contact_triangle(const std::array<IntPoint, 3>& p, const std::array<std::uint32_t, 3>& ids);
+
+/// The two triangles' extents along some diagonal do not overlap: they are
+/// disjoint (exact: integer projections), so they do not meet at all.
+inline bool diagonally_apart(const ContactTriangle& a, const ContactTriangle& b) {
+  for (int k = 0; k < 4; ++k)
+    if (a.diagonal[4 + k] < b.diagonal[k] || b.diagonal[4 + k] < a.diagonal[k]) return true;
+  return false;
+}
 
 /// Step 1 alone, for one pair: true if the two non-degenerate triangles meet
 /// anywhere except in shared vertices or a shared edge.

@@ -59,6 +59,37 @@ TEST(ContactSearch, CountEqualsAllPairsOnRandomSoups) {
   }
 }
 
+TEST(ContactSearch, DiagonalExtentsOnlyDismissDisjointTriangles) {
+  // The diagonal filter (diagonally_apart) must never dismiss a pair that
+  // meets or touches: over random soups, extreme coordinates and slivers
+  // along a diagonal, every dismissed pair is one the exact test calls
+  // apart and shares no vertex; and it does dismiss slivers that the boxes
+  // cannot tell apart (a stack of triangles in the parallel planes
+  // x + y + z = 10 k, whose boxes all overlap).
+  std::vector<Tri> tris = scattered(600, 400, 80, 11);
+  const std::int64_t m = kCoordLimit;
+  tris.push_back({{{-m, -m, -m}, {m, m, m}, {m, m, m - 1}}});
+  tris.push_back({{{-m, -m, -m + 1}, {m, m, m}, {m - 1, m, m}}});
+  for (std::int64_t c = 0; c < 400; c += 10)
+    tris.push_back({{{0, 0, c}, {1000, -1000, c}, {0, 500, c - 500}}});
+  const std::vector<ContactTriangle> ct = with_ids(tris);
+  std::size_t dismissed = 0;
+  for (std::size_t i = 0; i < ct.size(); ++i)
+    for (std::size_t j = i + 1; j < ct.size(); ++j) {
+      if (!core::diagonally_apart(ct[i], ct[j])) continue;
+      ++dismissed;
+      EXPECT_FALSE(core::triangles_meet_improperly(ct[i], ct[j])) << i << ", " << j;
+      for (const std::uint32_t a : ct[i].id)
+        for (const std::uint32_t b : ct[j].id) EXPECT_NE(a, b) << i << ", " << j << " share a vertex";
+    }
+  EXPECT_GT(dismissed, 0u);
+  std::size_t sliver_pairs = 0;  // the 40 slivers: boxes overlap pairwise, diagonals apart
+  for (std::size_t i = ct.size() - 40; i < ct.size(); ++i)
+    for (std::size_t j = i + 1; j < ct.size(); ++j) sliver_pairs += core::diagonally_apart(ct[i], ct[j]);
+  EXPECT_EQ(sliver_pairs, 40u * 39u / 2u);
+  EXPECT_EQ(core::find_contacts(ct, 1u << 30).pairs, all_pairs_count(ct));
+}
+
 TEST(ContactSearch, ExtremeCoordinatesAreNotMissed) {
   // Boxes at the grid's limits (|x| <= 2^25): the Morton key and the int32
   // boxes must hold them.
