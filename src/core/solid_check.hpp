@@ -14,12 +14,15 @@
 // Every doubt (touching, T-junctions, non-manifold edges, too many
 // components for the trace budget, a failed trace) answers "not solid": the
 // caller then takes the general path, which is always correct.
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <span>
 
 #include "core/fill_vector.hpp"
 #include "core/solve.hpp"
 #include "core/triangle_tree.hpp"
+#include "ember/geometry/bounds.hpp"
 
 namespace ember::core {
 
@@ -79,19 +82,38 @@ struct ContactTriangle {
   /// (vertex_stars.hpp), so triangles sharing that vertex never meet
   /// improperly. 0 (nothing certified) unless certify_embedded_stars set it.
   std::uint8_t embedded = 0;
-  /// The triangle's extent along the four diagonals (1,1,1), (1,1,-1),
-  /// (1,-1,1), (-1,1,1): lowest projections, then highest. With the box it
-  /// bounds the triangle by 14 planes; long slivers across the axes, whose
-  /// boxes overlap many others', are told apart by it (diagonally_apart).
-  std::array<std::int32_t, 8> diagonal{};
 };
 ContactTriangle contact_triangle(const std::array<IntPoint, 3>& p, const std::array<std::uint32_t, 3>& ids);
 
-/// The two triangles' extents along some diagonal do not overlap: they are
+/// A triangle's extent along the four diagonals (1,1,1), (1,1,-1), (1,-1,1),
+/// (-1,1,1): lowest projections, then highest. With the box it bounds the
+/// triangle by 14 planes; long slivers across the axes, whose boxes overlap
+/// many others', are told apart by it. Computed where needed (the proof's
+/// candidate pairs), not stored: 32 bytes per triangle of peak memory.
+struct DiagonalExtent {
+  std::array<std::int64_t, 4> lo, hi;
+};
+inline DiagonalExtent diagonal_extent(const std::array<IntPoint, 3>& p) {
+  // |coordinate| <= 2^25: a projection is below 3 * 2^25 in magnitude.
+  static_assert(3 * kCoordLimit < (std::int64_t{1} << 62), "diagonal projections must fit int64");
+  const auto project = [](const IntPoint& q) {
+    const std::int64_t s = q.x + q.y, d = q.x - q.y;
+    return std::array<std::int64_t, 4>{s + q.z, s - q.z, d + q.z, q.z - d};
+  };
+  const std::array<std::int64_t, 4> a = project(p[0]), b = project(p[1]), c = project(p[2]);
+  DiagonalExtent e;
+  for (int k = 0; k < 4; ++k) {
+    e.lo[k] = std::min({a[k], b[k], c[k]});
+    e.hi[k] = std::max({a[k], b[k], c[k]});
+  }
+  return e;
+}
+
+/// The two extents do not overlap along some diagonal: the triangles are
 /// disjoint (exact: integer projections), so they do not meet at all.
-inline bool diagonally_apart(const ContactTriangle& a, const ContactTriangle& b) {
+inline bool diagonally_apart(const DiagonalExtent& a, const DiagonalExtent& b) {
   for (int k = 0; k < 4; ++k)
-    if (a.diagonal[4 + k] < b.diagonal[k] || b.diagonal[4 + k] < a.diagonal[k]) return true;
+    if (a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) return true;
   return false;
 }
 

@@ -3,7 +3,6 @@
 //   orient3d: 2x2 minors < 2^53, terms < 2^79, sum < 2^81  -> __int128;
 //   orient2d: products < 2^52, difference < 2^53           -> int64;
 //   chord directions |s| * |d|: < 2^81 * 2^26 * 2        -> __int128.
-#include <algorithm>
 #include <cstdint>
 
 #include "core/solid_check.hpp"
@@ -154,19 +153,7 @@ bool wedges_meet(const IntPoint& v, const IntPoint& a1, const IntPoint& a2, cons
 }  // namespace
 
 ContactTriangle contact_triangle(const std::array<IntPoint, 3>& p, const std::array<std::uint32_t, 3>& ids) {
-  ContactTriangle t{p, grid_normal(p[0], p[1], p[2]), ids, 0, {}};
-  // |coordinate| < 2^25, so a sum of three is below 3 * 2^25 < 2^31.
-  static_assert(3 * kCoordLimit < (std::int64_t{1} << 31), "diagonal projections must fit int32");
-  const auto project = [](const IntPoint& q) {
-    const std::int64_t s = q.x + q.y, d = q.x - q.y;
-    return std::array<std::int64_t, 4>{s + q.z, s - q.z, d + q.z, q.z - d};
-  };
-  const std::array<std::int64_t, 4> a = project(p[0]), b = project(p[1]), c = project(p[2]);
-  for (int k = 0; k < 4; ++k) {
-    t.diagonal[k] = static_cast<std::int32_t>(std::min({a[k], b[k], c[k]}));
-    t.diagonal[4 + k] = static_cast<std::int32_t>(std::max({a[k], b[k], c[k]}));
-  }
-  return t;
+  return {p, grid_normal(p[0], p[1], p[2]), ids, 0};
 }
 
 bool triangles_meet_improperly(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b) {

@@ -76,7 +76,7 @@ TEST(ContactSearch, DiagonalExtentsOnlyDismissDisjointTriangles) {
   std::size_t dismissed = 0;
   for (std::size_t i = 0; i < ct.size(); ++i)
     for (std::size_t j = i + 1; j < ct.size(); ++j) {
-      if (!core::diagonally_apart(ct[i], ct[j])) continue;
+      if (!core::diagonally_apart(core::diagonal_extent(ct[i].p), core::diagonal_extent(ct[j].p))) continue;
       ++dismissed;
       EXPECT_FALSE(core::triangles_meet_improperly(ct[i], ct[j])) << i << ", " << j;
       for (const std::uint32_t a : ct[i].id)
@@ -85,7 +85,7 @@ TEST(ContactSearch, DiagonalExtentsOnlyDismissDisjointTriangles) {
   EXPECT_GT(dismissed, 0u);
   std::size_t sliver_pairs = 0;  // the 40 slivers: boxes overlap pairwise, diagonals apart
   for (std::size_t i = ct.size() - 40; i < ct.size(); ++i)
-    for (std::size_t j = i + 1; j < ct.size(); ++j) sliver_pairs += core::diagonally_apart(ct[i], ct[j]);
+    for (std::size_t j = i + 1; j < ct.size(); ++j) sliver_pairs += core::diagonally_apart(core::diagonal_extent(ct[i].p), core::diagonal_extent(ct[j].p));
   EXPECT_EQ(sliver_pairs, 40u * 39u / 2u);
   EXPECT_EQ(core::find_contacts(ct, 1u << 30).pairs, all_pairs_count(ct));
 }
