@@ -155,9 +155,16 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     gi = core::to_grid(operands, q);
     result.stats.grid_step = q.grid_spacing();
     result.stats.operands.resize(operands.size());
-    // Independent: side by side (an exception from the audit reaches the caller).
-    tbb::parallel_invoke([&] { core::audit_quantization(operands, gi, q, result.stats.operands, result.warnings); },
-                         [&] { edges = core::match_edges(gi); });
+    // Independent: side by side for small inputs (core::side_by_side; an
+    // exception from the audit reaches the caller either way).
+    const auto audit = [&] { core::audit_quantization(operands, gi, q, result.stats.operands, result.warnings); };
+    const auto match = [&] { edges = core::match_edges(gi); };
+    if (core::side_by_side(gi)) {
+      tbb::parallel_invoke(audit, match);
+    } else {
+      audit();
+      match();
+    }
     in = core::build_soup(gi, edges);
   });
   for (const OperandReport& r : result.stats.operands) {

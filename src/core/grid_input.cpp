@@ -51,6 +51,17 @@ int rounding_change(const Mesh& m, const GridTriangle& t) {
   return n[0] * g[0] + n[1] * g[1] + n[2] * g[2] < 0 ? 2 : 0;
 }
 
+/// f(o) for every operand: side by side for small inputs (side_by_side),
+/// one after the other otherwise.
+template <typename F>
+void for_each_operand(const GridInput& gi, std::size_t operands, F&& f) {
+  if (side_by_side(gi)) {
+    tbb::parallel_for(std::size_t{0}, operands, f);
+  } else {
+    for (std::size_t o = 0; o < operands; ++o) f(o);
+  }
+}
+
 std::string format_step(double step) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", step);
@@ -205,18 +216,18 @@ GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q) {
     gi.operand_begin.push_back(gi.operand_begin.back() + m.indices.size() - 2 * m.face_count());
   gi.triangles.resize(gi.operand_begin.back());
   gi.vertex_ids.resize(gi.operand_begin.back());
-  // The operands side by side: each one's chain (quantize, weld, triangulate)
-  // has serial steps and short loops, which a small operand's alone cannot
-  // spread over the threads. Each writes its own slice; the box is joined after.
+  // Small inputs: the operands side by side (kSideBySideTriangles). Each
+  // chain writes its own slice; the box is joined after.
   gi.vertex_count.resize(operands.size());
   std::vector<std::array<std::array<std::int64_t, 3>, 2>> box(operands.size(), {gi.lo, gi.hi});
-  tbb::parallel_for(std::size_t{0}, operands.size(), [&](std::size_t o) {
+  const auto chain = [&](std::size_t o) {
     const GridVertices g = quantize_used(operands[o], q);
     bound(g, box[o][0], box[o][1]);
     std::vector<std::uint32_t> id;
     gi.vertex_count[o] = weld_grid_vertices(g, id);
     triangulate_faces(operands[o], static_cast<std::uint32_t>(o), g, id, gi.operand_begin[o], gi);
-  });
+  };
+  for_each_operand(gi, operands.size(), chain);
   for (const auto& [lo, hi] : box)
     for (int a = 0; a < 3; ++a) {
       gi.lo[a] = std::min(gi.lo[a], lo[a]);
@@ -228,11 +239,11 @@ GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q) {
 void audit_quantization(std::span<const Mesh> operands, const GridInput& grid, const Quantizer& q,
                         std::vector<OperandReport>& reports, std::vector<std::string>& warnings) {
   // {with area, collapsed, flipped}: counts, so any split adds up the same.
-  // The operands side by side (a small one's reduction alone is short); the
+  // Small inputs: the operands side by side (kSideBySideTriangles); the
   // reports and warnings follow in operand order.
   using Counts = std::array<std::size_t, 3>;
   std::vector<Counts> per_operand(operands.size());
-  tbb::parallel_for(std::size_t{0}, operands.size(), [&](std::size_t o) {
+  const auto count = [&](std::size_t o) {
     per_operand[o] = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(grid.operand_begin[o], grid.operand_begin[o + 1], 4096), Counts{},
         [&](const tbb::blocked_range<std::size_t>& range, Counts c) {
@@ -245,7 +256,8 @@ void audit_quantization(std::span<const Mesh> operands, const GridInput& grid, c
           return c;
         },
         [](Counts a, const Counts& b) { return Counts{a[0] + b[0], a[1] + b[1], a[2] + b[2]}; });
-  });
+  };
+  for_each_operand(grid, operands.size(), count);
   for (std::size_t o = 0; o < operands.size(); ++o) {
     OperandReport& r = reports[o];
     const Counts& counts = per_operand[o];
