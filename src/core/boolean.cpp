@@ -243,10 +243,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
         arena.execute([&] { trees = core::build_operand_trees(std::move(*ranges), grid.corners); });
     // With every operand possibly solid, the solid path starts alongside the
     // proof, on the premise the proof is about to establish: a small input's
-    // proof and solve are chains of short parallel loops, which a second
-    // thread joins late (waking a sleeping worker costs tens of
-    // microseconds), so two independent tasks keep the threads busier than
-    // either alone. Same inputs as after the proof, so the same result; a
+    // proof and solve are chains of short loops and serial steps that leave
+    // the second thread idle (perf on pair034: 28% of its time), so two
+    // independent tasks keep the threads busier than either alone. Same inputs as after the proof, so the same result; a
     // failed proof abandons the run (solve_solid's `abandon`) and the
     // general path solves as before.
     std::optional<std::vector<core::OutputPolygon>> speculative;
@@ -297,15 +296,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       // something degenerately; the subdivision then solves as always.
       const bool all_solid = std::all_of(ctx.solid.begin(), ctx.solid.end(), [](char s) { return s != 0; });
       if (!all_solid) trees.reset();  // the subdivision does not use them
-      if (trees && speculated) {
-        if (speculative) {  // else the solid path declined: the subdivision solves
-          polys = std::move(*speculative);
-          result.stats.solid_path = true;
-          return;
-        }
-      } else if (trees) {
+      if (trees) {
         if (std::optional<std::vector<core::OutputPolygon>> direct =
-                core::solve_solid(root.soup, grid, root.box, ctx, *trees)) {
+                speculated ? std::move(speculative) : core::solve_solid(root.soup, grid, root.box, ctx, *trees)) {
           polys = std::move(*direct);
           result.stats.solid_path = true;
           return;

@@ -419,7 +419,7 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const Gr
   if (stop.load()) return std::nullopt;
   SolidSolver solver(soup, grid, box, ctx, trees, partners, stop);
   std::vector<std::vector<OutputPolygon>> touched_out;
-  if (!solver.classify_components() || !solver.solve_touched(touched_out) || stop.load()) return std::nullopt;
+  if (!solver.classify_components() || !solver.solve_touched(touched_out)) return std::nullopt;
   return solver.output(std::move(touched_out));
 }
 
