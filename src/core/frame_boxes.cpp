@@ -125,20 +125,20 @@ void FrameBoxes::build_grid() {
     for (int a = range[i][0]; a <= range[i][1]; ++a)
       for (int b = range[i][2]; b <= range[i][3]; ++b)
         members_[fill[static_cast<std::size_t>(a) * columns + b]++] = static_cast<std::uint32_t>(i);
-  seen_.assign(n, 0);
 }
 
-bool FrameBoxes::overlapping(std::size_t i, std::vector<std::uint32_t>& out) {
+bool FrameBoxes::overlapping(std::size_t i, Query& query, std::vector<std::uint32_t>& out) const {
   const auto r0 = cell_range(i, 0), r1 = cell_range(i, 1);
   if ((r0[1] - r0[0] + 1) * (r1[1] - r1[0] + 1) > kMaxSpan) return false;
-  if (++stamp_ == 0) {  // wrapped: forget every old stamp
-    std::fill(seen_.begin(), seen_.end(), 0);
-    stamp_ = 1;
+  std::vector<std::uint32_t>& seen = query.seen;
+  if (seen.size() != lo_.size() || ++query.stamp == 0) {  // new, or wrapped: forget every old stamp
+    seen.assign(lo_.size(), 0);
+    query.stamp = 1;
   }
   out.clear();
   const auto consider = [&](std::uint32_t j) {
-    if (seen_[j] == stamp_ || j == i) return;
-    seen_[j] = stamp_;
+    if (seen[j] == query.stamp || j == i) return;
+    seen[j] = query.stamp;
     if (!apart(i, j)) out.push_back(j);
   };
   const auto columns = static_cast<std::size_t>(cuts_[1].size() + 1);

@@ -31,10 +31,16 @@ class FrameBoxes {
   explicit FrameBoxes(const SoupApprox& a);
 
   bool empty() const { return lo_.empty(); }
+  /// A caller's memory of which polygons its current query has found: one per
+  /// thread, so that the threads of a pile leaf query one FrameBoxes together.
+  struct Query {
+    std::vector<std::uint32_t> seen;  ///< per polygon: the query stamp that found it
+    std::uint32_t stamp = 0;
+  };
   /// The polygons (ascending, without i) whose boxes overlap polygon i's, from a
   /// grid across the principal axis; false (out untouched) when i's box spans
   /// too much of the grid, and the caller should test every polygon.
-  bool overlapping(std::size_t i, std::vector<std::uint32_t>& out);
+  bool overlapping(std::size_t i, Query& query, std::vector<std::uint32_t>& out) const;
   /// True when polygons i and j cannot share a point.
   bool apart(std::size_t i, std::size_t j) const {
     const std::array<double, 3>&li = lo_[i], &hi = hi_[i], &lj = lo_[j], &hj = hi_[j];
@@ -51,8 +57,6 @@ class FrameBoxes {
   /// members per cell in CSR form; polygons spanning many cells are `wide_`.
   std::array<std::vector<double>, 2> cuts_;
   std::vector<std::uint32_t> cell_begin_, members_, wide_;
-  std::vector<std::uint32_t> seen_;  ///< per polygon: the query stamp that found it
-  std::uint32_t stamp_ = 0;
 };
 
 /// The unit vector along which the points spread most (power iteration on

@@ -1,9 +1,12 @@
 // Leaf computation (paper Sections 4.3 and 4.4): every polygon is cut by all
 // others with a polygon-local BSP, then each enabled piece is classified by
 // tracing a path from the leaf's reference point to an interior point.
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <numeric>
 #include <span>
 
@@ -33,12 +36,13 @@ struct LeafScratch {
   std::size_t n_front = 0, n_back = 0;  ///< free operands per side
   std::vector<Piece> sub, next;         ///< refinement of one piece; pieces being rebuilt
   Polygon neg, pos;                     ///< clip outputs (a cut's old piece hands its buffers on)
-  /// The leaf soup's approximations (soup.hpp) for the filters of gather and
-  /// of the traces; empty outside solve_leaf and in small leaves.
-  SoupApprox approx;
-  /// Pile leaves only: boxes in the leaf's principal frame (frame_boxes.hpp),
-  /// which separate slivers that all share one axis-aligned box.
-  FrameBoxes frame;
+  /// Pile leaves only (null elsewhere): the leaf soup's approximations
+  /// (soup.hpp) for the filters of gather and of the traces, and boxes in the
+  /// leaf's principal frame (frame_boxes.hpp), which separate slivers that all
+  /// share one axis-aligned box. Shared by the threads of the leaf.
+  const SoupApprox* approx = nullptr;
+  const FrameBoxes* frame = nullptr;
+  FrameBoxes::Query frame_query;
   std::vector<std::uint32_t> candidates;  ///< the frame grid's answer for t
 };
 
@@ -106,12 +110,12 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
     if ((o.operand == t.operand && t_solid) || o.id == t.id || !boxes_overlap(t, o)) return;
     // A polygon that cannot touch t changes nothing just beside t and cuts
     // nothing: leaving it out only narrows the free operands to the exact ones.
-    if (!sc.frame.empty() && sc.frame.apart(t_index, i)) return;
+    if (sc.frame && sc.frame->apart(t_index, i)) return;
     bool front = false, back = false;
     // Coplanar first: one plane comparison instead of exact zero tests of
     // every vertex (stacks are full of them).
     if (direction[i] != t_direction || !coplanar(t.poly->support, o.poly->support)) {
-      if (!sc.approx.verts.empty() && clearly_one_side(sc.approx.of(i), t_approx)) return;
+      if (sc.approx && clearly_one_side(sc.approx->of(i), t_approx)) return;
       if (!touches_plane(*o.poly, t.poly->support, t_approx, sc.other_signs)) return;
       for (const std::int8_t v : sc.other_signs) {
         front |= v > 0;
@@ -127,7 +131,7 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
   };
   // In a pile leaf the frame grid names the few polygons that can touch t
   // (in ascending order, as the full scan would visit them).
-  if (!sc.frame.empty() && sc.frame.overlapping(t_index, sc.candidates)) {
+  if (sc.frame && sc.frame->overlapping(t_index, sc.frame_query, sc.candidates)) {
     for (const std::uint32_t i : sc.candidates) consider(i);
     return;
   }
@@ -290,7 +294,7 @@ bool classify_piece(const Subproblem& pb, const SoupPolygon& t, const Polygon& f
                     Wnv& w_front, Wnv& w_back, LeafScratch& scratch) {
   const Plane& S = f.support;  // t's plane (t may be unbuilt: the proof's root soup)
   const int k = dominant_axis(S);
-  const SoupApprox* flat = scratch.approx.verts.empty() ? nullptr : &scratch.approx;
+  const SoupApprox* flat = scratch.approx;
   return for_each_interior_target(f, pb.ref, seed, [&](const Dyadic& target, const AxisPoint& x, int variant) {
     return classify_through(pb, t, S, target, k, x, variant == 0, solid, scratch.w, scratch.delta, w_front, w_back,
                             flat);
@@ -354,38 +358,64 @@ std::array<std::int64_t, 3> direction_key(const Plane& p) {
   return n;
 }
 
-}  // namespace
+/// What every polygon of a leaf reads, built once per leaf: the classes of
+/// parallel polygons (so that the coplanar overlaps of a stack are found
+/// among its parallel polygons, not the whole leaf) and, in pile leaves, the
+/// filters' approximations and frame boxes.
+struct LeafIndex {
+  std::vector<std::uint32_t> order;  ///< soup indices grouped by direction class
+  std::vector<std::uint32_t> class_begin, class_end, position;  ///< per polygon: its class in `order`, its place there
+  SoupApprox approx;
+  FrameBoxes frame;
+  bool pile = false;
+};
 
-void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<OutputPolygon>& out) {
-  // Group the soup by plane direction once, so that the coplanar overlaps of
-  // a stack are found among its parallel polygons, not the whole leaf.
-  const std::size_t size = pb.soup.size();
+/// Only a pile outgrows the caches: a leaf of the usual size (<= leaf_size
+/// polygons) keeps its polygons in cache, and the filters' copies would cost
+/// more than they save.
+constexpr std::size_t kPileLeaf = 256;
+
+LeafIndex index_leaf(const Soup& soup) {
+  const std::size_t size = soup.size();
+  LeafIndex index;
   std::vector<std::pair<std::array<std::int64_t, 3>, std::uint32_t>> keyed(size);
   for (std::size_t i = 0; i < size; ++i)
-    keyed[i] = {direction_key(pb.soup[i].poly->support), static_cast<std::uint32_t>(i)};
+    keyed[i] = {direction_key(soup[i].poly->support), static_cast<std::uint32_t>(i)};
   std::sort(keyed.begin(), keyed.end());
-  std::vector<std::uint32_t> order(size), class_begin(size), class_end(size), position(size);
+  index.order.resize(size);
+  index.class_begin.resize(size);
+  index.class_end.resize(size);
+  index.position.resize(size);
   for (std::size_t i = 0; i < size;) {
     std::size_t j = i;
     while (j < size && keyed[j].first == keyed[i].first) ++j;
     for (std::size_t k = i; k < j; ++k) {
-      order[k] = keyed[k].second;
-      class_begin[keyed[k].second] = static_cast<std::uint32_t>(i);
-      class_end[keyed[k].second] = static_cast<std::uint32_t>(j);
-      position[keyed[k].second] = static_cast<std::uint32_t>(k - i);
+      index.order[k] = keyed[k].second;
+      index.class_begin[keyed[k].second] = static_cast<std::uint32_t>(i);
+      index.class_end[keyed[k].second] = static_cast<std::uint32_t>(j);
+      index.position[keyed[k].second] = static_cast<std::uint32_t>(k - i);
     }
     i = j;
   }
-  keyed = {};
+  if (size > kPileLeaf) {
+    index.pile = true;
+    approximate(soup, index.approx);
+    index.frame = FrameBoxes(index.approx);
+  }
+  return index;
+}
+
+/// Cuts and classifies the leaf's polygons [begin, end) and emits their
+/// enabled pieces in soup order.
+void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafIndex& index, std::size_t begin,
+                    std::size_t end, std::vector<OutputPolygon>& out) {
+  const std::vector<std::uint32_t>&order = index.order, &class_begin = index.class_begin,
+        &class_end = index.class_end, &position = index.position;
   Wnv w_front, w_back;
   LeafScratch scratch;
-  // Only a pile outgrows the caches: a leaf of the usual size (<= leaf_size
-  // polygons) keeps its polygons in cache, and the copy would cost more than
-  // it saves.
-  constexpr std::size_t kFlatLeaf = 256;
-  if (pb.soup.size() > kFlatLeaf) {
-    approximate(pb.soup, scratch.approx);
-    scratch.frame = FrameBoxes(scratch.approx);
+  if (index.pile) {
+    scratch.approx = &index.approx;
+    scratch.frame = index.frame.empty() ? nullptr : &index.frame;
   }
   std::vector<Piece> pieces;
   const auto classify_or_throw = [&](const SoupPolygon& t, const Polygon& f, std::uint64_t seed) {
@@ -416,10 +446,10 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
   // leaf's pieces are about as many as its polygons. Piles (thousands of
   // polygons) grow the table as needed.
   constexpr std::size_t kMaxExpectedEdges = 4096;
-  EdgeWindings known(ctx.closed, pb.box, std::min(3 * pb.soup.size(), kMaxExpectedEdges));
+  EdgeWindings known(ctx.closed, pb.box, std::min(3 * (end - begin), kMaxExpectedEdges));
   std::vector<char> need_front(ctx.operands), need_back(ctx.operands), all(ctx.operands, 1);
-  for (const SoupPolygon& t : pb.soup) {
-    const std::size_t ti = static_cast<std::size_t>(&t - pb.soup.data());
+  for (std::size_t ti = begin; ti < end; ++ti) {
+    const SoupPolygon& t = pb.soup[ti];
     const bool uncovered = disable_covered(
         pb.soup, t, ctx, std::span<const std::uint32_t>(order.data() + class_begin[ti], class_end[ti] - class_begin[ti]),
         position[ti], scratch, pieces);
@@ -481,6 +511,31 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
       }
     }
   }
+}
+
+}  // namespace
+
+void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<OutputPolygon>& out) {
+  const LeafIndex index = index_leaf(pb.soup);
+  const std::size_t size = pb.soup.size();
+  // A pile leaf (thousands of polygons that no split separates: the sliver
+  // pile's take 0.1-2 s each) is shared by the threads in fixed blocks of
+  // polygons, so the pieces and their order are the same at any thread count.
+  // Each block hands winding numbers across input edges only among its own
+  // polygons (edge_windings.hpp): the values are exact either way.
+  constexpr std::size_t kBlock = 128;
+  if (size <= kPileLeaf) {
+    solve_polygons(pb, ctx, index, 0, size, out);
+    return;
+  }
+  std::vector<std::vector<OutputPolygon>> blocks((size + kBlock - 1) / kBlock);
+  tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
+    solve_polygons(pb, ctx, index, b * kBlock, std::min(size, (b + 1) * kBlock), blocks[b]);
+  });
+  std::size_t total = out.size();
+  for (const auto& b : blocks) total += b.size();
+  out.reserve(total);
+  for (auto& b : blocks) std::move(b.begin(), b.end(), std::back_inserter(out));
 }
 
 }  // namespace ember::core

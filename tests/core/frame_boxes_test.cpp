@@ -3,6 +3,7 @@
 // grid must return exactly the polygons whose frame boxes overlap.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <random>
 #include <vector>
 
@@ -93,11 +94,14 @@ TEST(FrameBoxes, PolygonsSharingAPointAreNeverApart) {
 
 TEST(FrameBoxes, GridReturnsExactlyTheOverlappingBoxes) {
   const Built b = build(strip_pile(1000, 300));
-  FrameBoxes frame(b.approx);
+  const FrameBoxes frame(b.approx);
+  // Two callers' queries interleaved, as threads share one pile leaf's frame:
+  // each query's memory of what it found is its own.
+  std::array<FrameBoxes::Query, 2> queries;
   std::vector<std::uint32_t> got;
   std::size_t answered = 0, total = 0;
   for (std::size_t i = 0; i < b.tris.size(); ++i) {
-    if (!frame.overlapping(i, got)) continue;
+    if (!frame.overlapping(i, queries[(i / 3) % 2], got)) continue;
     ++answered;
     std::vector<std::uint32_t> want;
     for (std::uint32_t j = 0; j < b.tris.size(); ++j)

@@ -3,6 +3,8 @@
 // Times are reported from the CLI (docs/core.md), not asserted here.
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "core_test_util.hpp"
 
 namespace ember::test {
@@ -25,6 +27,31 @@ TEST(Piles, ShiftedCubeUnionIsOneBox) {
     // The box's surface is emitted once: a few pieces per stacked polygon,
     // not the quadratic arrangement of all stacked edges (was 120k).
     EXPECT_LT(r.mesh.face_count(), std::size_t{20} * cubes.size() * 12);
+  }
+}
+
+/// The general path (no solid knowledge) on the same stack: its pile leaves
+/// (thousands of polygons that no split separates) are shared by the threads
+/// in fixed blocks (leaf.cpp), so the result is the same at every thread count.
+TEST(Piles, GeneralPathPileIsTheSameAtEveryThreadCount) {
+  constexpr int kCubes = 200;
+  constexpr double kStep = 1.0 / 128;
+  const std::vector<Mesh> cubes = shifted_cube_pile(kCubes, kStep);
+  std::optional<Mesh> first;
+  for (const int threads : {1, 2, 4}) {
+    BooleanOptions opt;
+    opt.threads = threads;
+    opt.detect_solid = false;
+    const BooleanResult r = run_checked(cubes, Operation::Union, opt, 0);
+    EXPECT_EQ(r.stats.solid_operands, 0u);
+    EXPECT_DOUBLE_EQ(volume(r.mesh), 1 + (kCubes - 1) * kStep);
+    if (!first) {
+      first = r.mesh;
+      continue;
+    }
+    EXPECT_EQ(r.mesh.vertices, first->vertices) << threads << " threads";
+    EXPECT_EQ(r.mesh.indices, first->indices) << threads << " threads";
+    EXPECT_EQ(r.mesh.face_offsets, first->face_offsets) << threads << " threads";
   }
 }
 
