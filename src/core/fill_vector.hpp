@@ -15,6 +15,10 @@
 // skipping construction is well defined; reading an element before the fill
 // wrote it is not. Other constructors (copies, values,
 // initializer lists) behave as in std::vector.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cstddef>
 #include <memory>
 #include <type_traits>
 #include <utility>
@@ -52,5 +56,25 @@ class NoInitAllocator : public std::allocator<T> {
 
 template <typename T>
 using FillVector = std::vector<T, NoInitAllocator<T>>;
+
+/// Reserves room for n elements of v and takes the page faults of the fresh
+/// storage in parallel, one write per page, before a resize that must
+/// construct its elements one by one (types that are not implicit-lifetime,
+/// such as the soup's polygons with their unique_ptr). The root soup of the
+/// 1.08M-triangle union is 86 MB: its resize was 37 ms of serial page faults,
+/// a quarter of the set-up at 16 threads; on mapped pages the construction
+/// runs at memory speed. The written bytes are storage no object lives in yet.
+template <typename T, typename A>
+void reserve_touched(std::vector<T, A>& v, std::size_t n) {
+  if (n <= v.size()) return;
+  v.reserve(n);
+  unsigned char* const fresh = reinterpret_cast<unsigned char*>(v.data() + v.size());
+  const std::size_t bytes = (n - v.size()) * sizeof(T);
+  constexpr std::size_t kPage = 4096;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, (bytes + kPage - 1) / kPage, 64),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t page = r.begin(); page != r.end(); ++page) fresh[page * kPage] = 0;
+                    });
+}
 
 }  // namespace ember::core

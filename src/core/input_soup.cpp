@@ -136,6 +136,7 @@ InputSoup build_soup(const GridInput& gi, const EdgeMatching& edges) {
   InputSoup in;
   const std::size_t kept = id[n];
   in.dropped_degenerate = n - kept;
+  reserve_touched(in.soup, kept);
   in.soup.resize(kept);
   in.sources.resize(kept);
   in.grid.corners.resize(kept);

@@ -107,11 +107,37 @@ std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, const
   return parent;
 }
 
+namespace {
+
+/// The ids of the operand's polygons, in soup order: a parallel filter over
+/// fixed blocks (count, offsets, fill). A serial scan of the 1.08M-triangle
+/// union's root soup (86 MB) was ~20 ms of each operand's proof at any
+/// thread count.
+std::vector<std::uint32_t> operand_members(const Soup& soup, std::uint32_t operand) {
+  constexpr std::size_t kBlock = 16384;
+  const std::size_t blocks = (soup.size() + kBlock - 1) / kBlock;
+  std::vector<std::size_t> offset(blocks + 1, 0);
+  const auto for_each_member = [&](std::size_t b, auto&& f) {
+    for (std::size_t i = b * kBlock, end = std::min(soup.size(), i + kBlock); i < end; ++i)
+      if (soup[i].operand == operand) f(soup[i].id);
+  };
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    for_each_member(b, [&](std::uint32_t) { ++offset[b + 1]; });
+  });
+  for (std::size_t b = 0; b < blocks; ++b) offset[b + 1] += offset[b];
+  std::vector<std::uint32_t> members(offset[blocks]);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    std::size_t at = offset[b];
+    for_each_member(b, [&](std::uint32_t id) { members[at++] = id; });
+  });
+  return members;
+}
+
+}  // namespace
+
 SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand,
                          const TriangleTree* tree) {
-  std::vector<std::uint32_t> members;
-  for (const SoupPolygon& p : root.soup)
-    if (p.operand == operand) members.push_back(p.id);
+  const std::vector<std::uint32_t> members = operand_members(root.soup, operand);
   if (members.empty()) return {};
   // Counting the contacts (not just finding one) costs at most one full
   // search, the price of proving a solid operand; the count tells the user why.
