@@ -201,7 +201,12 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
 
   // Number classes by their representative's corner (first appearance in
   // output order): flag the heads' corners, then count along the corners.
-  std::vector<std::uint32_t> class_at(n + 1, 0);  // per corner: 1 if it heads a class; then its class
+  // The large buffers below take their page faults in parallel
+  // (reserve_touched): value-initialized, they were serial steps of the
+  // weld that did not shrink with more threads.
+  std::vector<std::uint32_t> class_at;  // per corner: 1 if it heads a class; then its class
+  reserve_touched(class_at, n + 1);
+  class_at.resize(n + 1, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
     for (std::size_t it = r.begin(); it != r.end(); ++it)
       if (rep[it] == item[it].corner) class_at[item[it].corner] = 1;
@@ -209,7 +214,9 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
   std::exclusive_scan(class_at.begin(), class_at.end(), class_at.begin(), 0u);
   const std::uint32_t classes = class_at[n];
   auto class_of = [&](std::uint32_t it) { return class_at[rep[it]]; };
+  reserve_touched(out.exact, classes);
   out.exact.resize(classes);
+  reserve_touched(out.rounded, classes);
   out.rounded.resize(classes);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
     for (std::size_t it = r.begin(); it != r.end(); ++it) {
@@ -226,6 +233,7 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
     for (std::size_t v = r.begin(); v != r.end(); ++v)
       if (layout.first_corner[v] != kNoCorner) item_of_vertex[v] = class_of(item_of_vertex[v]);
   });
+  reserve_touched(corners.ids, n);
   corners.ids.resize(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 1024), [&](const auto& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
