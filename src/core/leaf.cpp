@@ -236,20 +236,18 @@ bool trace_onto(const Soup& soup, const SoupPolygon& t, const Plane& S, const Dy
   if (!onto_segment(S, start, k, x, seg, side)) return false;
   delta.assign(w.size(), 0);
   delta[t.operand] += 1;
-  Polygon scratch;  // for unbuilt triangles (the proof traces in the root soup)
-  // One loop per kind of miss filter (as in trace_axis_segment).
+  // One loop per kind of miss filter (as in trace_axis_segment); scan_soup
+  // shares a root soup's (the proof's) among the threads.
   const SoupPolygon* const polys = soup.data();  // not reloaded after each write to w
-  const std::size_t n = soup.size();
   const auto run = [&](auto&& clearly_misses) {
-    for (std::size_t i = 0; i < n; ++i) {
+    return scan_soup(soup.size(), w, delta, [&](std::size_t i, Wnv& sum, Wnv& sum_delta, Polygon& built) {
       const SoupPolygon& p = polys[i];
-      if (p.id == t.id || p.operand == skip || box_disjoint(p, seg.lo, seg.hi)) continue;
+      if (p.id == t.id || p.operand == skip || box_disjoint(p, seg.lo, seg.hi)) return true;
       // A clear miss of the segment's line misses x too (x is on the line), so
       // it decides both cases of meet_onto before its exact coplanarity test.
-      if (clearly_misses(i, p)) continue;
-      if (!meet_onto(seg, built_polygon(p, scratch), p.operand, S, x, w, delta)) return false;
-    }
-    return true;
+      if (clearly_misses(i, p)) return true;
+      return meet_onto(seg, built_polygon(p, built), p.operand, S, x, sum, sum_delta);
+    });
   };
   if (flat) return run([&](std::size_t i, const SoupPolygon&) { return line_clearly_misses(seg.line, seg.uv, *flat, i); });
   return run([&](std::size_t, const SoupPolygon& p) { return line_clearly_misses(seg.line, seg.uv, p); });

@@ -66,22 +66,19 @@ bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int 
   AxisSegment seg;
   if (!make_axis_segment(a, b, axis, seg)) return true;
   // The filters here, before the call: most polygons of a leaf miss the
-  // segment's box.
-  Polygon scratch;  // an unbuilt triangle that passes the filters is built here
-  if (flat) {
-    const SoupPolygon* const polys = soup.data();  // not reloaded after each write to w
-    for (std::size_t i = 0, n = soup.size(); i < n; ++i) {
+  // segment's box. One loop per kind of miss filter; scan_soup shares a root
+  // soup's (the proof's) among the threads.
+  const SoupPolygon* const polys = soup.data();  // not reloaded after each write to w
+  Wnv no_delta;
+  const auto run = [&](auto&& clearly_misses) {
+    return scan_soup(soup.size(), w, no_delta, [&](std::size_t i, Wnv& sum, Wnv&, Polygon& built) {
       const SoupPolygon& p = polys[i];
-      if (p.operand == skip || box_disjoint(p, seg.lo, seg.hi) || line_clearly_misses(seg.line, seg.uv, *flat, i)) continue;
-      if (!add_crossing(seg, built_polygon(p, scratch), p.operand, w)) return false;
-    }
-    return true;
-  }
-  for (const SoupPolygon& p : soup) {
-    if (p.operand == skip || box_disjoint(p, seg.lo, seg.hi) || line_clearly_misses(seg.line, seg.uv, p)) continue;
-    if (!add_crossing(seg, built_polygon(p, scratch), p.operand, w)) return false;
-  }
-  return true;
+      if (p.operand == skip || box_disjoint(p, seg.lo, seg.hi) || clearly_misses(i, p)) return true;
+      return add_crossing(seg, built_polygon(p, built), p.operand, sum);
+    });
+  };
+  if (flat) return run([&](std::size_t i, const SoupPolygon&) { return line_clearly_misses(seg.line, seg.uv, *flat, i); });
+  return run([&](std::size_t, const SoupPolygon& p) { return line_clearly_misses(seg.line, seg.uv, p); });
 }
 
 bool add_crossing(const AxisSegment& s, const SoupPolygon& p, Wnv& w) {
