@@ -3,6 +3,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_scan.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -155,15 +156,25 @@ std::size_t weld_grid_vertices(const GridVertices& g, std::vector<std::uint32_t>
       by_x[i] = {offset(g.pos[by_yz[i].second].x), static_cast<std::uint32_t>(i)};  // i: rank by (y, z, index)
   });
   sort_pairs(by_x);
+  FillVector<std::uint32_t> order(n);  // the i-th vertex in (x, y, z, index) order
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) order[i] = by_yz[by_x[i].second].second;
+  });
+  // A new id wherever the position changes along that order: a parallel
+  // prefix sum (the serial numbering loop was 12-15 ms of each operand's
+  // set-up at 16 threads on the 1.08M-triangle union).
   id.assign(g.pos.size(), 0);
-  std::uint32_t next = 0;
-  for (std::size_t i = 0, prev = 0; i < n; ++i) {
-    const std::uint32_t v = by_yz[by_x[i].second].second;  // i-th in (x, y, z, index) order
-    if (i > 0 && !(g.pos[v] == g.pos[prev])) ++next;
-    id[v] = next;
-    prev = v;
-  }
-  return n == 0 ? 0 : next + 1;
+  const std::uint32_t last = tbb::parallel_scan(
+      tbb::blocked_range<std::size_t>(0, n, 4096), std::uint32_t{0},
+      [&](const tbb::blocked_range<std::size_t>& r, std::uint32_t next, bool final) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          next += i > 0 && !(g.pos[order[i]] == g.pos[order[i - 1]]);
+          if (final) id[order[i]] = next;
+        }
+        return next;
+      },
+      [](std::uint32_t a, std::uint32_t b) { return a + b; });
+  return n == 0 ? 0 : last + 1;
 }
 
 /// Widens [lo, hi] to hold the used grid vertices.
