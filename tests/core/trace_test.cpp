@@ -56,7 +56,9 @@ TEST(Trace, RootSoupScanSumsLikeOneSerialPass) {
       bool got_ok = false;
       tbb::task_arena(threads).execute([&] { got_ok = trace_axis_segment(soup, a, b, axis, got); });
       ASSERT_EQ(got_ok, ok) << "segment " << s << ", " << threads << " threads";
-      if (ok) EXPECT_EQ(got, want) << "segment " << s << ", " << threads << " threads";
+      if (ok) {
+        EXPECT_EQ(got, want) << "segment " << s << ", " << threads << " threads";
+      }
     }
     if (ok) {
       ++traced;
