@@ -6,6 +6,7 @@
 // end, or touching it in its plane): then the caller chooses another path.
 // There are no tolerances: every decision is an exact predicate.
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -65,7 +66,7 @@ bool scan_soup(std::size_t n, Wnv& w, Wnv& delta, Visit&& visit) {
   const std::size_t chunks = (n + kChunk - 1) / kChunk;
   std::vector<Wnv> sums(chunks), deltas(chunks);
   std::atomic<bool> met_degenerately{false};
-  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+  const auto scan_chunk = [&](std::size_t c) {
     if (met_degenerately.load(std::memory_order_relaxed)) return;
     Wnv& cw = sums[c];
     Wnv& cd = deltas[c];
@@ -77,7 +78,10 @@ bool scan_soup(std::size_t n, Wnv& w, Wnv& delta, Visit&& visit) {
         met_degenerately = true;
         return;
       }
-  });
+  };
+  // Isolated: the caller (a proof's task, a split) waits for its own chunks,
+  // not for whatever unrelated task its thread would take meanwhile.
+  tbb::this_task_arena::isolate([&] { tbb::parallel_for(std::size_t{0}, chunks, scan_chunk); });
   if (met_degenerately) return false;
   for (std::size_t c = 0; c < chunks; ++c) {
     for (std::size_t o = 0; o < w.size(); ++o) w[o] += sums[c][o];

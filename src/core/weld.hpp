@@ -53,37 +53,43 @@ void for_each_edge(const WeldedTriangles& welded, F&& f) {
     std::uint32_t lo;
     EdgeUse use;
   };
-  constexpr std::size_t kBlock = 16384, kBucket = 4096;  // triangles per block, lower ids per bucket
+  // Triangles per block: at least 16384, and at most 256 blocks, so the
+  // table of blocks x buckets stays linear in the input. Lower ids per bucket:
+  // 4096 (a bucket's counters fit in L1).
+  constexpr std::size_t kBucket = 4096, kMaxBlocks = 256;
   const std::size_t n = welded.ids.size();
-  const std::size_t blocks = (n + kBlock - 1) / kBlock, buckets = welded.vertex_count / kBucket + 1;
+  const std::size_t block_size = std::max<std::size_t>(16384, (n + kMaxBlocks - 1) / kMaxBlocks);
+  const std::size_t blocks = (n + block_size - 1) / block_size;
+  const std::size_t buckets = std::max<std::size_t>(1, (welded.vertex_count + kBucket - 1) / kBucket);
   const auto for_each_use = [&](std::size_t block, auto&& use) {
-    for (std::size_t t = block * kBlock, end = std::min(n, t + kBlock); t < end; ++t)
+    for (std::size_t t = block * block_size, end = std::min(n, t + block_size); t < end; ++t)
       for (int e = 0; e < 3; ++e) {
         const std::uint32_t a = welded.ids[t][e], b = welded.ids[t][(e + 1) % 3];
         if (a != b) use(Use{std::min(a, b), {std::max(a, b), static_cast<std::uint32_t>(t), a < b, static_cast<std::uint8_t>(e)}});
       }
   };
-  // slot[block * buckets + bucket]: first the counts, then where the block writes.
-  std::vector<std::size_t> slot(blocks * buckets, 0);
+  // slot[bucket * blocks + block]: first the counts, then where the block
+  // writes (bucket-major, so the offsets are one pass in memory order).
+  std::vector<std::size_t> slot(buckets * blocks, 0);
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
-    for_each_use(k, [&](const Use& u) { ++slot[k * buckets + u.lo / kBucket]; });
+    for_each_use(k, [&](const Use& u) { ++slot[u.lo / kBucket * blocks + k]; });
   });
   std::vector<std::size_t> bucket_begin(buckets + 1, 0);
-  for (std::size_t b = 0, sum = 0; b < buckets; ++b) {
-    bucket_begin[b] = sum;
-    for (std::size_t k = 0; k < blocks; ++k) {
-      const std::size_t count = slot[k * buckets + b];
-      slot[k * buckets + b] = sum;
-      sum += count;
-    }
-    bucket_begin[b + 1] = sum;
+  std::size_t sum = 0;
+  for (std::size_t i = 0; i < slot.size(); ++i) {
+    if (i % blocks == 0) bucket_begin[i / blocks] = sum;
+    const std::size_t count = slot[i];
+    slot[i] = sum;
+    sum += count;
   }
-  FillVector<Use> uses(bucket_begin.back());  // every slot written below
+  bucket_begin[buckets] = sum;
+  FillVector<Use> uses(sum);  // every slot written below
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
-    for_each_use(k, [&](const Use& u) { uses[slot[k * buckets + u.lo / kBucket]++] = u; });
+    for_each_use(k, [&](const Use& u) { uses[slot[u.lo / kBucket * blocks + k]++] = u; });
   });
   tbb::parallel_for(std::size_t{0}, buckets, [&](std::size_t b) {
     const std::size_t first_id = b * kBucket, begin = bucket_begin[b], end = bucket_begin[b + 1];
+    if (begin == end) return;
     std::vector<std::uint32_t> start(kBucket + 1, 0);
     for (std::size_t i = begin; i < end; ++i) ++start[uses[i].lo - first_id + 1];
     for (std::size_t v = 1; v <= kBucket; ++v) start[v] += start[v - 1];

@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "core/solve.hpp"
 #include "core/trace.hpp"
 
 namespace ember::core {
@@ -68,6 +69,64 @@ TEST(Trace, RootSoupScanSumsLikeOneSerialPass) {
   // The check means something: most segments get a verdict, and they cross a lot.
   EXPECT_GT(traced, 20u);
   EXPECT_GT(crossings, 100u);
+}
+
+/// The proof's classification (classify_polygon: a path, then the last
+/// segment onto the piece, whose coplanar polygons at the target add to
+/// `delta`) over a root soup that scan_soup splits into chunks must be the
+/// one over the same polygons without the far filler that makes it large.
+TEST(Trace, ClassificationOverARootSoupIsTheSerialOne) {
+  std::mt19937_64 rng(9);
+  std::vector<std::array<IntPoint, 3>> tris;  // the near triangles, then the filler
+  // A stack of coplanar copies of one triangle, some turned over, then
+  // triangles across the region the paths go through.
+  for (int k = 0; k < 12; ++k)
+    tris.push_back(k % 3 == 2 ? std::array<IntPoint, 3>{{{0, 0, 0}, {0, 100, 0}, {100, 0, 0}}}
+                              : std::array<IntPoint, 3>{{{0, 0, 0}, {100, 0, 0}, {0, 100, 0}}});
+  while (tris.size() < 400) {
+    const std::array<IntPoint, 3> c{random_point(rng, 120), random_point(rng, 120), random_point(rng, 120)};
+    if (grid_normal(c[0], c[1], c[2]) != std::array<std::int64_t, 3>{0, 0, 0}) tris.push_back(c);
+  }
+  const std::size_t near = tris.size();
+  // The filler lies beyond x = 10000, where no path between the reference
+  // point (at the low corner) and the near triangles goes.
+  while (tris.size() < 70000) {
+    IntPoint o = random_point(rng, 100);
+    o.x += 10100;
+    tris.push_back({o, IntPoint{o.x + 3, o.y, o.z + 1}, IntPoint{o.x, o.y + 2, o.z + 5}});
+  }
+  const auto root = [&](std::size_t count) {
+    Subproblem pb;
+    pb.box.lo = {-200, -200, -200};  // the same box (and reference point) for both soups
+    pb.box.hi = {10400, 200, 200};
+    for (int a = 0; a < 3; ++a) pb.ref.num[a] = 2 * pb.box.lo[a] + 1;
+    pb.ref.shift = 1;
+    pb.ref_w.assign(3, 0);
+    for (std::uint32_t i = 0; i < count; ++i) pb.soup.push_back(unbuilt_triangle(tris[i], i, i % 3));
+    return pb;
+  };
+  const Subproblem small_pb = root(near), big_pb = root(tris.size());
+  std::size_t classified = 0;
+  for (std::uint32_t t = 0; t < 60; ++t) {
+    Wnv front, back;
+    const bool ok = classify_polygon(small_pb, small_pb.soup[t], front, back);
+    for (const int threads : {1, 4}) {
+      Wnv big_front, big_back;
+      bool big_ok = false;
+      tbb::task_arena(threads).execute([&] { big_ok = classify_polygon(big_pb, big_pb.soup[t], big_front, big_back); });
+      ASSERT_EQ(big_ok, ok) << "triangle " << t << ", " << threads << " threads";
+      if (ok) {
+        EXPECT_EQ(big_front, front) << "triangle " << t << ", " << threads << " threads";
+        EXPECT_EQ(big_back, back) << "triangle " << t << ", " << threads << " threads";
+      }
+    }
+    classified += ok;
+  }
+  EXPECT_GT(classified, 40u);
+  // The stack's copies see each other at their common target: front and back differ by the stack's sum.
+  Wnv front, back;
+  ASSERT_TRUE(classify_polygon(big_pb, big_pb.soup[0], front, back));
+  EXPECT_NE(front, back);
 }
 
 }  // namespace
