@@ -245,9 +245,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     // proof, on the premise the proof is about to establish: a small input's
     // proof and solve are chains of short loops and serial steps that leave
     // the second thread idle (perf on pair034: 28% of its time), so two
-    // independent tasks keep the threads busier than either alone. Same inputs as after the proof, so the same result; a
-    // failed proof abandons the run (solve_solid's `abandon`) and the
-    // general path solves as before.
+    // independent tasks keep the threads busier than either alone. Same
+    // inputs as after the proof, so the same result; a failed proof abandons
+    // the run (solve_solid's `abandon`) and the general path solves as before.
     std::optional<std::vector<core::OutputPolygon>> speculative;
     bool speculated = false;
     if (options.detect_solid) {

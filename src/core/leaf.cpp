@@ -525,7 +525,7 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
   // block boundary costs traces. Blocks of 128 polygons made the sliver
   // pile's solve ~10% slower at 2 threads than one block per leaf, 512 ~5%.
   constexpr std::size_t kBlock = 512;
-  if (size <= kPileLeaf) {
+  if (size <= kBlock) {  // one block: no tasks, no copy
     solve_polygons(pb, ctx, index, 0, size, out);
     return;
   }

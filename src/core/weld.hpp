@@ -69,10 +69,14 @@ void for_each_edge(const WeldedTriangles& welded, F&& f) {
       }
   };
   // slot[bucket * blocks + block]: first the counts, then where the block
-  // writes (bucket-major, so the offsets are one pass in memory order).
+  // starts writing (bucket-major, so the offsets are one pass in memory order).
+  // Each block counts and writes through cursors of its own (no cache line
+  // shared with another block's in the hot loops).
   std::vector<std::size_t> slot(buckets * blocks, 0);
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
-    for_each_use(k, [&](const Use& u) { ++slot[u.lo / kBucket * blocks + k]; });
+    std::vector<std::size_t> count(buckets, 0);
+    for_each_use(k, [&](const Use& u) { ++count[u.lo / kBucket]; });
+    for (std::size_t b = 0; b < buckets; ++b) slot[b * blocks + k] = count[b];
   });
   std::vector<std::size_t> bucket_begin(buckets + 1, 0);
   std::size_t sum = 0;
@@ -85,7 +89,9 @@ void for_each_edge(const WeldedTriangles& welded, F&& f) {
   bucket_begin[buckets] = sum;
   FillVector<Use> uses(sum);  // every slot written below
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
-    for_each_use(k, [&](const Use& u) { uses[slot[u.lo / kBucket * blocks + k]++] = u; });
+    std::vector<std::size_t> at(buckets);
+    for (std::size_t b = 0; b < buckets; ++b) at[b] = slot[b * blocks + k];
+    for_each_use(k, [&](const Use& u) { uses[at[u.lo / kBucket]++] = u; });
   });
   tbb::parallel_for(std::size_t{0}, buckets, [&](std::size_t b) {
     const std::size_t first_id = b * kBucket, begin = bucket_begin[b], end = bucket_begin[b + 1];
