@@ -131,9 +131,13 @@ bool triangles_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint,
 /// triangles_meet_improperly (which ends in it when nothing is shared).
 bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
                           const std::array<IntPoint, 3>& b, const std::array<std::int64_t, 3>& nb);
+/// The same, computing b's normal only when b is not beside a's plane (the
+/// solid path's candidates: most of them are).
+bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
+                          const std::array<IntPoint, 3>& b);
 /// Every corner of `b` lies strictly on one side of the plane of `a` (normal
-/// `na` = grid_normal of a), so the two cannot meet: the cheap rejection
-/// before triangles_meet. Exact.
+/// `na` = grid_normal of a), so the two cannot meet: the cheap rejection that
+/// apart_triangles_meet tries first. Exact.
 bool beside_plane(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
                   const std::array<IntPoint, 3>& b);
 

@@ -52,14 +52,13 @@ void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32
       const std::array<IntPoint, 3>& ta = grid.corners[ia];
       unsigned m = B.overlap_mask(b, box);
       if (m == 0) continue;
-      // Most box pairs have one triangle wholly beside the other's plane,
-      // which three exact dot products tell without the full test's set-up.
+      // apart_triangles_meet rejects first by b's corners against a's plane
+      // (beside_plane), before it computes b's normal.
       const std::array<std::int64_t, 3> na = grid_normal(ta[0], ta[1], ta[2]);
       for (; m != 0; m &= m - 1) {
         const std::uint32_t ib = b_base + B.item(bb + static_cast<std::size_t>(std::countr_zero(m)));
         const std::array<IntPoint, 3>& tb = grid.corners[ib];
-        if (!beside_plane(ta, na, tb) && apart_triangles_meet(ta, na, tb, grid_normal(tb[0], tb[1], tb[2])))
-          sink.local().emplace_back(ia, ib);
+        if (apart_triangles_meet(ta, na, tb)) sink.local().emplace_back(ia, ib);
       }
     }
     return;

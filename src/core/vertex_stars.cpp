@@ -19,30 +19,44 @@ static_assert(kCoordLimit <= (std::int64_t{1} << 25) && kMaxValence <= 1024,
               "bits: normals < 2^53, |d| < 2^10 * 2^53 = 2^63 (int64), d . n < 3 * 2^116, s < 2^90, e . s < 3 * 2^116");
 
 /// One triangle of a star, seen from the star's vertex v: (v, a, b)
-/// counter-clockwise around its normal n.
+/// counter-clockwise around its normal n. The a ids are kept apart
+/// (Scratch::start), where the walk below scans them.
 struct Spoke {
-  std::uint32_t a = 0, b = 0;     ///< welded ids of the other two corners
+  std::uint32_t b = 0;            ///< welded id of the corner after a
   std::array<std::int64_t, 3> e;  ///< a - v
   const std::array<std::int64_t, 3>* n = nullptr;
 };
 
+/// Per worker: a star's spokes, grown to the largest valence seen and
+/// written by index (no per-spoke push_back).
+struct Scratch {
+  std::vector<Spoke> spokes;
+  std::vector<std::uint32_t> start;  ///< per spoke: the welded id of its a
+};
+
 /// Whether the star given by `corners` (3 * triangle + corner, all at one
-/// vertex) is certified. `spokes` is scratch.
-bool star_is_embedded(std::span<const ContactTriangle> tris, std::span<const std::uint32_t> corners,
-                      std::vector<Spoke>& spokes) {
+/// vertex) is certified.
+bool star_is_embedded(std::span<const ContactTriangle> tris, std::span<const std::uint32_t> corners, Scratch& sc) {
   const std::size_t m = corners.size();
   if (m < 3 || m > kMaxValence) return false;
-  spokes.clear();
+  if (sc.spokes.size() < m) {
+    sc.spokes.resize(m);
+    sc.start.resize(m);
+  }
+  Spoke* const spokes = sc.spokes.data();
+  std::uint32_t* const start = sc.start.data();
   std::array<std::int64_t, 3> d{0, 0, 0};  // |d| < 2^10 * 2^53 = 2^63
-  for (const std::uint32_t c : corners) {
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::uint32_t c = corners[i];
     const ContactTriangle& t = tris[c / 3];
-    const int k = static_cast<int>(c % 3);
-    const IntPoint &v = t.p[k], &a = t.p[(k + 1) % 3];
-    spokes.push_back({t.id[(k + 1) % 3], t.id[(k + 2) % 3], {a.x - v.x, a.y - v.y, a.z - v.z}, &t.n});
+    const int k = static_cast<int>(c % 3), k1 = k == 2 ? 0 : k + 1, k2 = k1 == 2 ? 0 : k1 + 1;
+    const IntPoint &v = t.p[k], &a = t.p[k1];
+    start[i] = t.id[k1];
+    spokes[i] = {t.id[k2], {a.x - v.x, a.y - v.y, a.z - v.z}, &t.n};
     for (int j = 0; j < 3; ++j) d[j] += t.n[j];
   }
-  for (const Spoke& sp : spokes) {
-    const std::array<std::int64_t, 3>& n = *sp.n;
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::array<std::int64_t, 3>& n = *spokes[i].n;
     if (i128(d[0]) * n[0] + i128(d[1]) * n[1] + i128(d[2]) * n[2] <= 0) return false;
   }
   // Walk the spokes from spoke 0, each to the one starting where it ends
@@ -56,8 +70,9 @@ bool star_is_embedded(std::span<const ContactTriangle> tris, std::span<const std
   bool lower = false;
   std::size_t i = 0;
   for (std::size_t step = 1; step <= m; ++step) {
+    const std::uint32_t b = spokes[i].b;
     std::size_t next = 0;
-    while (next < m && spokes[next].a != spokes[i].b) ++next;
+    while (next < m && start[next] != b) ++next;
     if (next == m) return false;  // b is no spoke's start: the star is open
     if (step == m) return next == 0;
     i = next;
@@ -106,10 +121,10 @@ void certify_embedded_stars(std::span<ContactTriangle> tris) {
   std::vector<char> embedded(vertices, 0);
   // ~1,300 instructions per star: 128 of them are a task worth stealing.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices, 128), [&](const tbb::blocked_range<std::size_t>& r) {
-    std::vector<Spoke> spokes;
+    Scratch scratch;
     for (std::size_t v = r.begin(); v != r.end(); ++v)
       embedded[v] = star_is_embedded(
-          tris, std::span<const std::uint32_t>(corners.data() + start[v], start[v + 1] - start[v]), spokes);
+          tris, std::span<const std::uint32_t>(corners.data() + start[v], start[v + 1] - start[v]), scratch);
   });
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t t = r.begin(); t != r.end(); ++t) {
