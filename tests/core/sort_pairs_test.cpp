@@ -43,10 +43,11 @@ void expect_sorted_like_std(Pairs<Key> v, int threads) {
 
 TEST(SortPairs, MatchesStdSortOn64BitKeys) {
   std::mt19937_64 rng(7);
-  // Sizes below the comparison-sort threshold, one chunk, several chunks
-  // with a ragged last one.
-  for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{100}, std::size_t{5000},
-                              std::size_t{65536}, std::size_t{3 * 65536 + 17}}) {
+  // Sizes below the comparison-sort threshold, 8-bit digits (up to 4,095
+  // pairs), 11-bit digits in one chunk and in several chunks with a ragged
+  // last one.
+  for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{50}, std::size_t{100}, std::size_t{700},
+                              std::size_t{4095}, std::size_t{5000}, std::size_t{65536}, std::size_t{3 * 65536 + 17}}) {
     for (const bool shuffled : {false, true}) {
       // Full-width keys; edge-like keys (min << 32 | max over 2^17 ids: bits
       // 17..31 never vary); few distinct keys (many ties broken by value);
@@ -86,7 +87,7 @@ TEST(SortPairs, MatchesStdSortOn32BitKeys) {
 TEST(SortPairs, FillVectorSortsLikeStdVector) {
   std::mt19937_64 rng(5);
   std::uniform_int_distribution<std::uint64_t> any;
-  std::uniform_int_distribution<std::uint64_t> narrow(0, (1u << 11) - 1);  // one radix pass
+  std::uniform_int_distribution<std::uint64_t> narrow(0, (1u << 11) - 1);  // one 11-bit pass, two 8-bit ones
   for (const std::size_t n : {std::size_t{100}, std::size_t{70000}, std::size_t{2 * 65536 + 9}}) {
     for (const bool one_pass : {false, true}) {
       for (const bool shuffled : {false, true}) {
