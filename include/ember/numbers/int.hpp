@@ -293,11 +293,38 @@ constexpr Int<A + B> operator*(const Int<A>& a, const Int<B>& b) {
     // operands use. Replaces the limb loop for e.g. Int<106>*Int<21>.
     const u128 p = static_cast<u128>(static_cast<i128>(a.raw())) * static_cast<u128>(static_cast<i128>(b.raw()));
     return Int<R>::assume_bound(Int<127>(static_cast<i128>(p)));
+  } else if constexpr (Int<B>::limbs == 1) {
+    return b * a;  // the one-limb factor first (below)
+  } else if constexpr (Int<A>::limbs == 1) {
+    // One factor is an int64 (|a| < 2^63): b's two's-complement limbs times
+    // a, lowest first, with a signed carry (the top limb is b's signed one).
+    // Each step |a * limb + carry| < 2^63 * 2^64 + 2^63 < 2^127 fits an
+    // i128; no magnitudes, no sign branches, no final negation. The plane
+    // coefficients (53 bits) times minors and point coordinates in Cramer's
+    // rule and in classify are of this kind.
+    constexpr int LB = Int<B>::limbs, LR = Int<R>::limbs;
+    static_assert(LB <= LR, "the product has at least the limbs of its wider factor");
+    const i128 x = a.raw();
+    std::array<std::uint64_t, LR> out{};
+    i128 carry = 0;
+    for (int j = 0; j < LB; ++j) {
+      const i128 limb = j + 1 < LB ? static_cast<i128>(b.limb(j)) : static_cast<i128>(static_cast<std::int64_t>(b.limb(j)));
+      const i128 t = x * limb + carry;
+      out[j] = static_cast<std::uint64_t>(t);
+      carry = t >> 64;  // arithmetic: floor
+    }
+    for (int j = LB; j < LR; ++j) {  // sign extension of the last carry
+      out[j] = static_cast<std::uint64_t>(carry);
+      carry >>= 64;
+    }
+    return Int<R>::from_limbs(out);
   } else {
-    // (A branch-free variant, correcting an unsigned product of the two's-complement
-    // limbs by masked subtractions of the other operand, measured 10-40% slower for
-    // Int<53>*Int<188>, Int<79>*Int<162> and the classify dot product (faster only for
-    // Int<106>*Int<79>): its borrow chains serialize, these sign branches are cheap.)
+    // Both factors of two or more limbs. (A branch-free variant, correcting an
+    // unsigned product of the two's-complement limbs by masked subtractions of the
+    // other operand, measured 10-40% slower for Int<53>*Int<188>, Int<79>*Int<162>
+    // and the classify dot product (faster only for Int<106>*Int<79>): its borrow
+    // chains serialize, these sign branches are cheap. The one-limb case above
+    // needs no correction: its factor's sign rides in the signed products.)
     // Schoolbook product of magnitudes, then the sign. Magnitudes need ceil(A/64)
     // limbs; the result needs ceil(R/64) limbs and cannot carry past them.
     constexpr int LA = detail::mag_limbs(A), LB = detail::mag_limbs(B);

@@ -4,11 +4,13 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <numeric>
+#include <optional>
 
 #include "core/mesh/vertex_index.hpp"
 #include "core/sort_pairs.hpp"
@@ -165,8 +167,12 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
   auto clock = std::chrono::steady_clock::now();
   const OutputVertices verts = exact_weld(polys, q, ids);
   out.stats.weld_ms = ms_since(clock);
-  const VertexIndex index = index_output_vertices(polys, verts, ids);
-  const EdgePairs pairs = group_edges_by_pair(verts.corners, polys);
+  // Independent, and each mostly one sort and one serial pass: side by side.
+  std::optional<VertexIndex> index_slot;
+  EdgePairs pairs;
+  tbb::parallel_invoke([&] { index_slot.emplace(index_output_vertices(polys, verts, ids)); },
+                       [&] { pairs = group_edges_by_pair(verts.corners, polys); });
+  const VertexIndex& index = *index_slot;
   const Cycles cycles = insert_tjunction_vertices(polys, verts, index, pairs, out.stats.tjunctions, ids);
   out.stats.tjunction_ms = ms_since(clock);
   // Whole triangles that nothing can join go straight to the output; their
