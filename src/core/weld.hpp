@@ -47,6 +47,26 @@ struct EdgeUse {
 ///     hands them to f vertex by vertex.
 /// f runs concurrently for different edges (it must be thread-safe; the uses
 /// it sees and their order do not depend on the schedule).
+/// Sorts one vertex's uses into EdgeUse order. They arrive ordered by
+/// (triangle, edge): every pass of for_each_edge keeps the order of the one
+/// before, and the triangles are read in order. So a stable sort by hi alone
+/// gives the total order: an insertion sort for the few uses of an ordinary
+/// vertex (a comparison sort's three-key compares were most of the matching's
+/// per-vertex work), the comparison sort for a fan's centre.
+template <typename It>
+void sort_by_hi(It first, It last) {
+  if (last - first > 16) {
+    std::sort(first, last);
+    return;
+  }
+  for (It it = first + (first != last); it < last; ++it) {
+    const EdgeUse x = *it;
+    It at = it;
+    for (; at != first && (at - 1)->hi > x.hi; --at) *at = *(at - 1);
+    *at = x;
+  }
+}
+
 template <typename F>
 void for_each_edge(const WeldedTriangles& welded, F&& f) {
   struct Use {
@@ -104,7 +124,7 @@ void for_each_edge(const WeldedTriangles& welded, F&& f) {
     for (std::size_t i = begin; i < end; ++i) sorted[fill[uses[i].lo - first_id]++] = uses[i].use;
     for (std::size_t v = 0; v < kBucket; ++v) {
       const auto first = sorted.begin() + start[v], last = sorted.begin() + start[v + 1];
-      std::sort(first, last);
+      sort_by_hi(first, last);
       for (auto it = first; it != last;) {
         auto jt = it;
         while (jt != last && jt->hi == it->hi) ++jt;
