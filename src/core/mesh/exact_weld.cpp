@@ -145,8 +145,9 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
       }
     }
   });
-  // The input vertex items.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layout.first_corner.size(), 4096), [&](const auto& r) {
+  // The input vertex items (grain 512: each rounds a point, and a small
+  // Boolean's few thousand must still be shared by two threads).
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layout.first_corner.size(), 512), [&](const auto& r) {
     for (std::size_t v = r.begin(); v != r.end(); ++v) {
       const std::uint64_t f = layout.first_corner[v];
       if (f == kNoCorner) continue;
@@ -218,7 +219,7 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
   out.exact.resize(classes);
   reserve_touched(out.rounded, classes);
   out.rounded.resize(classes);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 4096), [&](const auto& r) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 512), [&](const auto& r) {
     for (std::size_t it = r.begin(); it != r.end(); ++it) {
       const Item& x = item[it];
       if (rep[it] != x.corner) continue;

@@ -5,6 +5,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/parallel_scan.h>
 
 #include <algorithm>
 #include <atomic>
@@ -12,8 +13,8 @@
 #include <numeric>
 #include <optional>
 
+#include "core/fill_vector.hpp"
 #include "core/mesh/vertex_index.hpp"
-#include "core/sort_pairs.hpp"
 
 namespace ember::core {
 
@@ -98,7 +99,7 @@ void assemble(const RegionTriangles& direct, bool direct_exact, const Regions& r
   for (std::size_t r = 0; r < n_regions; ++r)
     first[r + 1] = first[r] + (override_of[r] != UINT32_MAX ? overrides[override_of[r]].tris.size() : count[r]);
   const std::size_t total = first[n_regions];
-  std::vector<std::array<std::uint32_t, 3>> tris(total);
+  FillVector<std::array<std::uint32_t, 3>> tris(total);  // every triangle written below
   out.provenance.resize(total);
   std::vector<std::uint64_t> first_use(verts.exact.size(), UINT64_MAX);
   const auto note_use = [&](std::size_t t) {
@@ -126,16 +127,32 @@ void assemble(const RegionTriangles& direct, bool direct_exact, const Regions& r
       }
     }
   });
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> used;
-  for (std::uint32_t v = 0; v < first_use.size(); ++v)
-    if (first_use[v] != UINT64_MAX) used.emplace_back(first_use[v], v);
-  sort_pairs(used);
-  std::vector<std::uint32_t> remap(verts.exact.size(), UINT32_MAX);
+  // A vertex's number is the rank of its first use among all first uses:
+  // flag the corners that are one, then a prefix count along the corners (in
+  // parallel; it was a serial collection and a sort of the used vertices).
+  const std::size_t corners = 3 * total;
+  FillVector<std::uint32_t> rank(corners + 1);  // flag, then the exclusive prefix count; every entry written
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, corners, 4096), [&](const auto& range) {
+    for (std::size_t c = range.begin(); c != range.end(); ++c) rank[c] = first_use[tris[c / 3][c % 3]] == c;
+  });
+  rank[corners] = 0;
+  const std::uint32_t vertices = tbb::parallel_scan(
+      tbb::blocked_range<std::size_t>(0, corners + 1, 4096), std::uint32_t{0},
+      [&](const tbb::blocked_range<std::size_t>& range, std::uint32_t sum, bool final) {
+        for (std::size_t c = range.begin(); c != range.end(); ++c) {
+          const std::uint32_t flag = rank[c];
+          if (final) rank[c] = sum;
+          sum += flag;
+        }
+        return sum;
+      },
+      [](std::uint32_t a, std::uint32_t b) { return a + b; });
+  const auto remap = [&](std::uint32_t v) { return rank[first_use[v]]; };
   Mesh& mesh = out.mesh;
-  mesh.vertices.resize(used.size());
-  tbb::parallel_for(std::size_t{0}, used.size(), [&](std::size_t i) {
-    remap[used[i].second] = static_cast<std::uint32_t>(i);
-    mesh.vertices[i] = verts.rounded[used[i].second];
+  mesh.vertices.resize(vertices);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, first_use.size(), 4096), [&](const auto& range) {
+    for (std::size_t v = range.begin(); v != range.end(); ++v)
+      if (first_use[v] != UINT64_MAX) mesh.vertices[rank[first_use[v]]] = verts.rounded[v];
   });
   mesh.indices.resize(3 * total);
   mesh.face_offsets.resize(total + 1);
@@ -143,7 +160,7 @@ void assemble(const RegionTriangles& direct, bool direct_exact, const Regions& r
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 1024), [&](const auto& range) {
     std::size_t local = 0;
     for (std::size_t t = range.begin(); t != range.end(); ++t) {
-      for (int c = 0; c < 3; ++c) mesh.indices[3 * t + static_cast<std::size_t>(c)] = remap[tris[t][c]];
+      for (int c = 0; c < 3; ++c) mesh.indices[3 * t + static_cast<std::size_t>(c)] = remap(tris[t][c]);
       mesh.face_offsets[t + 1] = static_cast<std::uint32_t>(3 * (t + 1));
       // A whole input triangle (every direct one) has area; rounded exactly,
       // its area vector is its grid normal times 2^-2k, which the extended
