@@ -61,6 +61,15 @@ inline bool side_by_side(const GridInput& gi) { return gi.triangles.size() < kSi
 /// face_offsets[f] - 2 f and the layout does not depend on scheduling.
 GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q);
 
+/// What the grid did to the input triangle (a, b, c) whose grid corners
+/// have the grid normal g: -1 it had no area to begin with (|n| <= 2^-40
+/// |b - a||c - a| for its normal n, evaluated in long double), 0 kept, 1
+/// collapsed (g = 0), 2 flipped (n . g < 0). rounding_change_reference is
+/// that definition in long double; rounding_change decides most triangles
+/// in double, where it provably agrees, and falls back to it elsewhere.
+int rounding_change(const Vec3d& a, const Vec3d& b, const Vec3d& c, const std::array<std::int64_t, 3>& g);
+int rounding_change_reference(const Vec3d& a, const Vec3d& b, const Vec3d& c, const std::array<std::int64_t, 3>& g);
+
 /// Counts per operand the triangles the grid collapsed or flipped (into
 /// reports[o].triangles / collapsed_triangles / flipped_triangles). Throws
 /// ember::Error naming the operand, the counts and the grid step when an
