@@ -91,8 +91,9 @@ Vec3d Quantizer::dequantize(const Point& p) const {
   if (p.w == PointW(1))
     return dequantize(IntPoint{static_cast<std::int64_t>(p.x.limb(0)), static_cast<std::int64_t>(p.y.limb(0)),
                                static_cast<std::int64_t>(p.z.limb(0))});
-  // x = (X + C W) / W * 2^-k: |C| < 2^63, W < 2^162 so C W < 2^225, sum < 2^226.
-  const Int<64> cx(c_[0]), cy(c_[1]), cz(c_[2]);
+  // x = (X + C W) / W * 2^-k: |C| < 9.0e18 < 2^63 (fit_box), W < 2^162 so
+  // C W < 2^225, sum < 2^226. Int<63>: one limb, the products' fast path.
+  const Int<63> cx(c_[0]), cy(c_[1]), cz(c_[2]);
   const auto x = ratio_to_double(p.x + cx * p.w, p.w);
   const auto y = ratio_to_double(p.y + cy * p.w, p.w);
   const auto z = ratio_to_double(p.z + cz * p.w, p.w);
