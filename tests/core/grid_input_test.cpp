@@ -23,12 +23,15 @@ std::array<double, 3> cross(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   return {uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
 }
 
-/// An integer vector of magnitude about 2^bits along d (|components| < 2^53).
+/// An integer vector of magnitude about 2^bits (bits <= 52) along d; along
+/// (1, 0, 0) where d is zero or not finite (a normal that overflowed).
 Normal along(const std::array<double, 3>& d, int bits) {
   const double m = std::max({std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])});
-  if (!(m > 0)) return {0, 0, 0};
-  const double s = std::ldexp(1.0, bits) / m;
-  return {std::llround(d[0] * s), std::llround(d[1] * s), std::llround(d[2] * s)};
+  if (!(m > 0) || !std::isfinite(d[0]) || !std::isfinite(d[1]) || !std::isfinite(d[2]))
+    return {std::int64_t{1} << bits, 0, 0};
+  // d_i / m is in [-1, 1]: the components stay within 2^bits, no overflow.
+  return {std::llround(std::ldexp(d[0] / m, bits)), std::llround(std::ldexp(d[1] / m, bits)),
+          std::llround(std::ldexp(d[2] / m, bits))};
 }
 
 struct Tally {
