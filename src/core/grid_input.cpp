@@ -96,7 +96,7 @@ namespace {
 /// What the grid did to an input triangle (rounding_change).
 int rounding_change(const Mesh& m, const GridTriangle& t) {
   return core::rounding_change(m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]],
-                         grid_normal(t.p[0], t.p[1], t.p[2]));
+                               grid_normal(t.p[0], t.p[1], t.p[2]));
 }
 
 /// f(o) for every operand: side by side for small inputs (side_by_side),

@@ -43,6 +43,17 @@ bool strictly_one_side(const i128 (&s)[3]) {
   return (s[0] > 0 && s[1] > 0 && s[2] > 0) || (s[0] < 0 && s[1] < 0 && s[2] < 0);
 }
 
+/// The sides (grid_side) of b's corners against the plane of a (normal na).
+/// Always inlined: returned through memory, the 48 bytes cost the partner
+/// search ~0.6% of pair001's instructions.
+struct Sides {
+  i128 s[3];
+};
+[[gnu::always_inline]] inline Sides sides(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
+                                          const std::array<IntPoint, 3>& b) {
+  return {{grid_side(a[0], na, b[0]), grid_side(a[0], na, b[1]), grid_side(a[0], na, b[2])}};
+}
+
 /// A 2D view of a plane: coordinates (u, v) after dropping axis `drop`.
 struct Projection {
   int u, v;
@@ -174,8 +185,7 @@ bool triangles_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint,
 
 bool beside_plane(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
                   const std::array<IntPoint, 3>& b) {
-  const i128 s[3] = {grid_side(a[0], na, b[0]), grid_side(a[0], na, b[1]), grid_side(a[0], na, b[2])};
-  return strictly_one_side(s);
+  return strictly_one_side(sides(a, na, b).s);
 }
 
 bool triangles_meet_improperly(const ContactTriangle& ta, const ContactTriangle& tb) {
@@ -234,10 +244,12 @@ template <typename NormalOfB>
 bool apart_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na, const std::array<IntPoint, 3>& b,
                 NormalOfB&& normal_of_b) {
   // b against a's plane first (beside_plane).
-  const i128 sb[3] = {grid_side(a[0], na, b[0]), grid_side(a[0], na, b[1]), grid_side(a[0], na, b[2])};
+  const Sides b_side = sides(a, na, b);
+  const i128(&sb)[3] = b_side.s;
   if (strictly_one_side(sb)) return false;
   const std::array<std::int64_t, 3> nb = normal_of_b();
-  const i128 sa[3] = {grid_side(b[0], nb, a[0]), grid_side(b[0], nb, a[1]), grid_side(b[0], nb, a[2])};
+  const Sides a_side = sides(b, nb, a);
+  const i128(&sa)[3] = a_side.s;
   if (strictly_one_side(sa)) return false;
   // a in b's plane: then b is in a's too (sb all zero), coplanar triangles.
   if (sa[0] == 0 && sa[1] == 0 && sa[2] == 0) return coplanar_meet(a, b, Projection(dominant_axis(na)));

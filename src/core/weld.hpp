@@ -34,19 +34,6 @@ struct EdgeUse {
   }
 };
 
-/// Calls f(uses) once per undirected edge with the span of its uses, ordered
-/// by triangle. Edges of collapsed corners (equal ids) are skipped. Linear: a
-/// two-level counting sort by the lower id, then tiny per-vertex sorts, every
-/// pass parallel over fixed blocks (a serial counting sort was half of the
-/// 1.08M-triangle union's edge matching, and all of it at 16 threads; atomic
-/// counters instead cost more than they saved at 2 threads):
-///  1. each block of triangles counts its uses per bucket of kBucket lower ids;
-///  2. each block writes its uses into its own slots of each bucket (bucket
-///     by bucket, blocks in order: the result does not depend on the schedule);
-///  3. each bucket sorts its uses by lower id into a buffer of its own and
-///     hands them to f vertex by vertex.
-/// f runs concurrently for different edges (it must be thread-safe; the uses
-/// it sees and their order do not depend on the schedule).
 /// Sorts one vertex's uses into EdgeUse order. They arrive ordered by
 /// (triangle, edge): every pass of for_each_edge keeps the order of the one
 /// before, and the triangles are read in order. So a stable sort by hi alone
@@ -67,6 +54,19 @@ void sort_by_hi(It first, It last) {
   }
 }
 
+/// Calls f(uses) once per undirected edge with the span of its uses, ordered
+/// by triangle. Edges of collapsed corners (equal ids) are skipped. Linear: a
+/// two-level counting sort by the lower id, then tiny per-vertex sorts, every
+/// pass parallel over fixed blocks (a serial counting sort was half of the
+/// 1.08M-triangle union's edge matching, and all of it at 16 threads; atomic
+/// counters instead cost more than they saved at 2 threads):
+///  1. each block of triangles counts its uses per bucket of kBucket lower ids;
+///  2. each block writes its uses into its own slots of each bucket (bucket
+///     by bucket, blocks in order: the result does not depend on the schedule);
+///  3. each bucket sorts its uses by lower id into a buffer of its own and
+///     hands them to f vertex by vertex.
+/// f runs concurrently for different edges (it must be thread-safe; the uses
+/// it sees and their order do not depend on the schedule).
 template <typename F>
 void for_each_edge(const WeldedTriangles& welded, F&& f) {
   struct Use {

@@ -24,7 +24,6 @@
 #include <vector>
 
 #include "core/fill_vector.hpp"
-
 #include "core/solve.hpp"
 #include "ember/boolean.hpp"
 #include "ember/core/quantize.hpp"
