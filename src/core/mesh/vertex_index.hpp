@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -41,6 +42,57 @@ inline bool clearly_off_segment(const Vec3d& ra, const Vec3d& rb, const Vec3d& r
          std::fabs(dx * wy - dy * wx) > bound;
 }
 
+/// A conservative box test for the segment searches below: false only if no
+/// box point can be the correctly rounded position of an exact point on the
+/// exact segment whose end points round to ra and rb.
+///
+/// Why it is sound (M, the largest |coordinate| of ra and rb, bounds the
+/// coordinates of such positions, which lie in the box of ra and rb):
+/// clearly_off_segment's bound puts such a position rv within 2^-51 M, per
+/// coordinate, of ra + t (rb - ra) for some t in [0, 1]. The test clips that
+/// segment's parameter range to the box grown by pad = 2^-40 M, slab by slab;
+/// each computed slab bound (one rounded difference for rb - ra, one for the
+/// grown face, one for its distance from ra, a rounded reciprocal and a
+/// product) is off by less than 2^-48 M in position, so the computed range
+/// contains the exact range of the box grown by 2^-40 M - 2^-48 M > 2^-51 M,
+/// which contains t. Outside 2^-400 <= M <= 2^400 it rules nothing out.
+class SegmentTube {
+ public:
+  SegmentTube(const Vec3d& ra, const Vec3d& rb) {
+    const double m = std::max({std::fabs(ra.x), std::fabs(ra.y), std::fabs(ra.z), std::fabs(rb.x), std::fabs(rb.y),
+                               std::fabs(rb.z)});
+    usable_ = m >= 0x1p-400 && m <= 0x1p400;
+    pad_ = 0x1p-40 * m;
+    start_ = {ra.x, ra.y, ra.z};
+    const std::array<double, 3> d{rb.x - ra.x, rb.y - ra.y, rb.z - ra.z};
+    for (int a = 0; a < 3; ++a) inverse_[a] = d[a] == 0 ? 0 : 1 / d[a];
+  }
+
+  /// False only if [lo, hi] holds no such position (see above).
+  bool meets(const Vec3d& lo, const Vec3d& hi) const {
+    if (!usable_) return true;
+    const std::array<double, 3> l{lo.x, lo.y, lo.z}, h{hi.x, hi.y, hi.z};
+    double t0 = 0, t1 = 1;
+    for (int a = 0; a < 3; ++a) {
+      const double from = l[a] - pad_, to = h[a] + pad_;
+      if (inverse_[a] == 0) {  // rb - ra is 0 in this coordinate: the segment stays at ra's
+        if (start_[a] < from || start_[a] > to) return false;
+        continue;
+      }
+      double u = (from - start_[a]) * inverse_[a], v = (to - start_[a]) * inverse_[a];
+      if (u > v) std::swap(u, v);
+      t0 = std::max(t0, u);
+      t1 = std::min(t1, v);
+    }
+    return t0 <= t1;
+  }
+
+ private:
+  std::array<double, 3> start_{}, inverse_{};
+  double pad_ = 0;
+  bool usable_ = false;
+};
+
 /// A set of vertices bucketed in a uniform grid over their rounded positions
 /// (cells about one mean edge long, found through a hash table). Positions
 /// are copied so that a query touches only the set's own memory.
@@ -50,6 +102,14 @@ inline bool clearly_off_segment(const Vec3d& ra, const Vec3d& rb, const Vec3d& r
 /// bounds, so a query can visit classes 0-1 (Part::kLow) or 1-2
 /// (Part::kHigh) alone at no extra cost (the T-junction search's "vertices
 /// of the other operand": tjunctions.cpp).
+///
+/// Cells one mean edge long can hold whole clusters of vertices: where the
+/// edges are long slivers (thousands of units long, 1e-3 wide), a cell holds
+/// the thousands of vertices across a rod's end, and every edge passing it
+/// tested them all (the sliver pile: 5,500 members per query). A cell with
+/// more than kTreeMembers members therefore keeps them in a small kd-tree,
+/// and a segment query descends only into the nodes whose boxes the segment
+/// passes (SegmentTube), testing the classes member by member there.
 class VertexIndex {
  public:
   enum class Part { kAll, kLow, kHigh };
@@ -91,9 +151,11 @@ class VertexIndex {
     // that hold neighbours).
     std::vector<Vec3d> by_cell_pos(n);
     std::vector<std::uint32_t> by_cell_id(n);
+    class_.resize(n);
     for (std::uint32_t i = 0; i < n; ++i) {
       by_cell_pos[i] = pos_[cells[i].second];
       by_cell_id[i] = ids_[cells[i].second];
+      class_[i] = static_cast<std::uint8_t>(cells[i].first & 3);
     }
     pos_ = std::move(by_cell_pos);
     ids_ = std::move(by_cell_id);
@@ -112,6 +174,7 @@ class VertexIndex {
         if (c < 1) slot.class1 = slot.end;
         if (c < 2) slot.class2 = slot.end;
       }
+      if (slot.end - slot.begin > kTreeMembers) slot.tree = build_tree(slot.begin, slot.end);
       std::size_t h = hash(cell) & (size - 1);
       while (slots_[h].end != 0) h = (h + 1) & (size - 1);
       slots_[h] = slot;
@@ -133,7 +196,10 @@ class VertexIndex {
     const Vec3d hi{std::max(ra.x, rb.x), std::max(ra.y, rb.y), std::max(ra.z, rb.z)};
     const double span = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     const double pieces = std::min(std::ceil(span / cell_), 65536.0);
-    if (!(pieces > 2)) return for_each_in_box(lo, hi, f, part);
+    std::optional<SegmentTube> tube;  // only crowded cells use it
+    if (!nodes_.empty()) tube.emplace(ra, rb);
+    const SegmentTube* const near = tube ? &*tube : nullptr;
+    if (!(pieces > 2)) return for_each_in_box(lo, hi, f, part, near);
     const double pad = 0x1p-40 * std::max({std::fabs(lo.x), std::fabs(lo.y), std::fabs(lo.z), std::fabs(hi.x),
                                            std::fabs(hi.y), std::fabs(hi.z)});
     const auto n = static_cast<int>(pieces);
@@ -148,14 +214,17 @@ class VertexIndex {
                     std::max(lo.z, std::min(p0.z, p1.z) - pad)};
       const Vec3d h{std::min(hi.x, std::max(p0.x, p1.x) + pad), std::min(hi.y, std::max(p0.y, p1.y) + pad),
                     std::min(hi.z, std::max(p0.z, p1.z) + pad)};
-      for_each_in_box(l, h, f, part);
+      for_each_in_box(l, h, f, part, near);
       p0 = p1;
     }
   }
 
-  /// Calls f(v) for every member of `part` whose rounded position lies in [lo, hi].
+  /// Calls f(v) for every member of `part` whose rounded position lies in
+  /// [lo, hi] (with a tube: in crowded cells, only where the tube meets the
+  /// member's kd-tree leaf).
   template <typename F>
-  void for_each_in_box(const Vec3d& lo, const Vec3d& hi, F&& f, Part part = Part::kAll) const {
+  void for_each_in_box(const Vec3d& lo, const Vec3d& hi, F&& f, Part part = Part::kAll,
+                       const SegmentTube* tube = nullptr) const {
     const Bounds& b = bounds_[static_cast<int>(part)];
     if (pos_.empty() || hi.x < b.lo.x || hi.y < b.lo.y || hi.z < b.lo.z || lo.x > b.hi.x || lo.y > b.hi.y ||
         lo.z > b.hi.z)
@@ -169,6 +238,12 @@ class VertexIndex {
       for (std::int64_t y = c0[1]; y <= c1[1]; ++y)
         for (std::int64_t z = c0[2]; z <= c1[2]; ++z) {
           const Slot& slot = find(key({x, y, z}));
+          if (slot.tree != kNoTree) {
+            visit_tree(slot.tree, lo, hi, tube, part, [&](std::uint32_t i) {
+              if (inside(i)) f(ids_[i]);
+            });
+            continue;
+          }
           const std::uint32_t begin = part == Part::kHigh ? slot.class1 : slot.begin;
           const std::uint32_t end = part == Part::kLow ? slot.class2 : slot.end;
           for (std::uint32_t i = begin; i < end; ++i)
@@ -196,6 +271,84 @@ class VertexIndex {
            static_cast<std::uint64_t>(c[2]);
   }
 
+  /// A crowded cell's members in kd-tree order: node k covers members
+  /// [begin, end) within the box [lo, hi]; children first_child and
+  /// first_child + 1, none (a leaf) when first_child is 0.
+  struct Node {
+    Vec3d lo, hi;
+    std::uint32_t begin = 0, end = 0, first_child = 0;
+  };
+  static constexpr std::uint32_t kTreeMembers = 64;  ///< cells with more members get a tree
+  static constexpr std::uint32_t kTreeLeaf = 8;      ///< members per leaf, at most
+  static constexpr std::uint32_t kNoTree = UINT32_MAX;
+
+  /// Builds the tree of members [begin, end) (reordering them) and returns its root.
+  std::uint32_t build_tree(std::uint32_t begin, std::uint32_t end) {
+    const auto root = static_cast<std::uint32_t>(nodes_.size());
+    nodes_.emplace_back();
+    std::vector<std::uint32_t> order(end - begin);  // order[j]: the member that goes to begin + j
+    for (std::uint32_t j = 0; j < order.size(); ++j) order[j] = begin + j;
+    split(root, begin, order.data(), order.data() + order.size());
+    const std::vector<Vec3d> pos(pos_.begin() + begin, pos_.begin() + end);
+    const std::vector<std::uint32_t> ids(ids_.begin() + begin, ids_.begin() + end);
+    const std::vector<std::uint8_t> cls(class_.begin() + begin, class_.begin() + end);
+    for (std::uint32_t j = 0; j < order.size(); ++j) {
+      pos_[begin + j] = pos[order[j] - begin];
+      ids_[begin + j] = ids[order[j] - begin];
+      class_[begin + j] = cls[order[j] - begin];
+    }
+    return root;
+  }
+  /// Node k over the members `first..last` (pointers into the build order,
+  /// member slots from `begin`): their box, then halves at the median of
+  /// the box's widest coordinate.
+  void split(std::uint32_t k, std::uint32_t begin, std::uint32_t* first, std::uint32_t* last) {
+    Node node;
+    node.begin = begin;
+    node.end = begin + static_cast<std::uint32_t>(last - first);
+    node.lo = node.hi = pos_[*first];
+    for (const std::uint32_t* i = first; i != last; ++i) {
+      const Vec3d& p = pos_[*i];
+      node.lo = {std::min(node.lo.x, p.x), std::min(node.lo.y, p.y), std::min(node.lo.z, p.z)};
+      node.hi = {std::max(node.hi.x, p.x), std::max(node.hi.y, p.y), std::max(node.hi.z, p.z)};
+    }
+    if (node.end - node.begin > kTreeLeaf) {
+      const double ex = node.hi.x - node.lo.x, ey = node.hi.y - node.lo.y, ez = node.hi.z - node.lo.z;
+      const int axis = ex >= ey && ex >= ez ? 0 : ey >= ez ? 1 : 2;
+      const auto coord = [&](std::uint32_t i) { return axis == 0 ? pos_[i].x : axis == 1 ? pos_[i].y : pos_[i].z; };
+      std::uint32_t* mid = first + (last - first) / 2;
+      std::nth_element(first, mid, last, [&](std::uint32_t a, std::uint32_t b) { return coord(a) < coord(b); });
+      node.first_child = static_cast<std::uint32_t>(nodes_.size());
+      nodes_.resize(nodes_.size() + 2);
+      split(node.first_child, begin, first, mid);
+      split(node.first_child + 1, begin + static_cast<std::uint32_t>(mid - first), mid, last);
+    }
+    nodes_[k] = node;
+  }
+  /// Calls g(i) for the members of `part` in the leaves of tree `root` whose
+  /// boxes meet [lo, hi] and the tube (if any).
+  template <typename G>
+  void visit_tree(std::uint32_t root, const Vec3d& lo, const Vec3d& hi, const SegmentTube* tube, Part part,
+                  G&& g) const {
+    std::uint32_t stack[64];  // depth <= log2(2^32 / kTreeLeaf) + 1 < 32; two entries per level
+    int top = 0;
+    stack[top++] = root;
+    while (top > 0) {
+      const Node& n = nodes_[stack[--top]];
+      if (n.hi.x < lo.x || n.hi.y < lo.y || n.hi.z < lo.z || n.lo.x > hi.x || n.lo.y > hi.y || n.lo.z > hi.z) continue;
+      if (tube && !tube->meets(n.lo, n.hi)) continue;
+      if (n.first_child != 0) {
+        stack[top++] = n.first_child;
+        stack[top++] = n.first_child + 1;
+        continue;
+      }
+      for (std::uint32_t i = n.begin; i < n.end; ++i)
+        if ((part != Part::kLow || class_[i] <= 1) && (part != Part::kHigh || class_[i] >= 1)) g(i);
+    }
+  }
+
+  std::vector<Node> nodes_;
+  std::vector<std::uint8_t> class_;  ///< per member (cell order): its class
   std::vector<std::uint32_t> ids_;  ///< member i is output vertex ids_[i] (in cell order once built)
   std::vector<Vec3d> pos_;          ///< its rounded position
   Vec3d lo_{}, hi_{};
@@ -207,7 +360,8 @@ class VertexIndex {
   struct Slot {
     std::uint64_t key = 0;
     std::uint32_t begin = 0, end = 0;  ///< run of members (cell order); end == 0: empty slot
-    std::uint32_t class1 = 0, class2 = 0;  ///< where classes 1 and 2 begin in the run
+    std::uint32_t class1 = 0, class2 = 0;  ///< where classes 1 and 2 begin in the run (no tree)
+    std::uint32_t tree = kNoTree;          ///< a crowded cell's kd-tree root (its run in tree order)
   };
   std::vector<Slot> slots_;
   static std::uint64_t hash(std::uint64_t k) { return (k ^ (k >> 29)) * 0x9E3779B97F4A7C15ull >> 20; }
