@@ -270,8 +270,6 @@ class SolidSolver {
 
  private:
   static constexpr std::size_t kChunk = 256;
-  /// A triangle with this many pieces has them classified in parallel.
-  static constexpr std::size_t kParallelPieces = 64;
 
   /// Per worker: what a chunk's triangles reuse.
   struct ChunkScratch {
@@ -280,8 +278,11 @@ class SolidSolver {
     CutScratch cut;
     TraceScratch trace;
     SolidHandover handover;
+    CutHandover cut_handover;
+    std::vector<const Polygon*> partner_polys;
+    std::vector<std::uint32_t> partner_operands;
+    PieceWindings windings;  ///< of the current triangle's pieces
     Wnv front, back;
-    std::vector<int> piece_w;  ///< per piece of a heavily cut triangle: front, then back
   };
 
   /// The touched triangles of operand o in Morton slots first .. first +
@@ -301,24 +302,15 @@ class SolidSolver {
       const Polygon& t = cs.cache.get(id);
       const bool whole = cut_triangle(t, id, cs.cache, cs.cut) && cs.cut.pieces.size() == 1;
       cs.handover.begin_triangle(id, t, cs.cut.partners, grid_);
-      // A triangle cut into many pieces (a large face under a pile of
-      // slivers: EMBER case 582 has three with 1,600-4,400) would hold one
-      // thread for its traces: those are classified in parallel first, then
-      // recorded in order. A piece's winding numbers are exact, whichever
-      // way they are found, so the handover's state and the output are the
-      // same as piece by piece.
+      // Every piece's winding numbers first (most from across input edges
+      // and cut lines, classify_in_turn), then recorded and emitted in
+      // order. They are exact, whichever way they are found, so the
+      // handover's state and the output do not depend on the way.
       const std::vector<Piece>& pieces = cs.cut.pieces;
-      const bool parallel = pieces.size() >= kParallelPieces;
-      if (parallel && !classify_pieces(pieces, t, id, o, cs.piece_w)) return false;
+      if (!classify_in_turn(pieces, t, id, o, cs)) return false;
       for (std::size_t m = 0; m < pieces.size(); ++m) {
         const Polygon& f = pieces[m].poly;
-        if (parallel) {
-          const auto at = cs.piece_w.begin() + static_cast<std::ptrdiff_t>(2 * operands_ * m);
-          cs.front.assign(at, at + static_cast<std::ptrdiff_t>(operands_));
-          cs.back.assign(at + static_cast<std::ptrdiff_t>(operands_), at + static_cast<std::ptrdiff_t>(2 * operands_));
-        } else if (!classify_piece(f, t, id, m, o, &cs.handover, cs.front, cs.back, cs.trace)) {
-          return false;
-        }
+        cs.windings.get(m, cs.front, cs.back);
         cs.handover.record(f, cs.front, cs.back);
         bool flip = false;
         if (emitted(cs.front, cs.back, flip)) out.push_back(output_of(soup_[id], whole ? nullptr : &f, flip));
@@ -327,11 +319,11 @@ class SolidSolver {
     return true;
   }
 
-  /// Piece m of touched triangle t (input triangle id, operand o): across an
-  /// input edge to an untouched neighbour, else from the handover (when one
-  /// is given), else traced.
-  bool classify_piece(const Polygon& f, const Polygon& t, std::uint32_t id, std::size_t m, std::uint32_t o,
-                      SolidHandover* handover, Wnv& front, Wnv& back, TraceScratch& sc) const {
+  /// Piece f's winding numbers from across one of t's input edges (t:
+  /// input triangle id, operand o): an untouched neighbour's component, else
+  /// the handover from a neighbour's piece.
+  bool known_across_input_edge(const Polygon& f, const Polygon& t, std::uint32_t id, std::uint32_t o,
+                               SolidHandover& handover, Wnv& front, Wnv& back) const {
     const std::uint32_t via = untouched_neighbour_along(f, t, grid_.neighbors[id], touched_);
     if (via != kNoNeighbor) {
       component_w(via, front, back);
@@ -339,32 +331,35 @@ class SolidSolver {
       back[o] = 1;
       return true;
     }
-    if (handover && handover->find(f, front, back)) return true;
-    return classify_from_outside(tracer_, f, o, (std::uint64_t{id} << 20) ^ (m << 10), front, back, sc);
+    return handover.find(f, front, back);
   }
 
-  /// Every piece of t at once, in parallel (no handover: it is sequential),
-  /// into w: per piece its front, then its back winding numbers.
-  bool classify_pieces(const std::vector<Piece>& pieces, const Polygon& t, std::uint32_t id, std::uint32_t o,
-                       std::vector<int>& w) const {
-    w.resize(2 * operands_ * pieces.size());
-    std::atomic<bool> ok{true};
-    tbb::this_task_arena::isolate([&] {  // waiting here runs only these pieces, not other chunks
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 8), [&](const auto& r) {
-        TraceScratch scratch;
-        Wnv front, back;
-        for (std::size_t m = r.begin(); m != r.end() && ok.load(std::memory_order_relaxed); ++m) {
-          if (!classify_piece(pieces[m].poly, t, id, m, o, nullptr, front, back, scratch)) {
-            ok = false;
-            return;
-          }
-          const auto at = w.begin() + static_cast<std::ptrdiff_t>(2 * operands_ * m);
-          std::copy(front.begin(), front.end(), at);
-          std::copy(back.begin(), back.end(), at + static_cast<std::ptrdiff_t>(operands_));
-        }
-      });
+  /// The pieces of touched triangle t, into cs.windings: first those known
+  /// across t's input edges, then, spreading from the known pieces, their
+  /// neighbours across cut lines (CutHandover::spread), tracing a piece only
+  /// where nothing known reaches it. A triangle then costs one trace per
+  /// group of pieces its cut lines cannot hand across (none, mostly: its
+  /// input edges decide a piece), where every piece its input edges did not
+  /// decide used to be traced (pair001: 2,008 traces, now 6).
+  bool classify_in_turn(const std::vector<Piece>& pieces, const Polygon& t, std::uint32_t id, std::uint32_t o,
+                        ChunkScratch& cs) const {
+    const std::size_t n = pieces.size();
+    PieceWindings& pw = cs.windings;
+    pw.reset(n, operands_);
+    for (std::size_t m = 0; m < n; ++m)
+      if (known_across_input_edge(pieces[m].poly, t, id, o, cs.handover, cs.front, cs.back)) pw.store(m, cs.front, cs.back);
+    if (pw.complete()) return true;
+    cs.partner_polys.clear();
+    cs.partner_operands.clear();
+    for (const std::uint32_t q : cs.cut.partners) {
+      cs.partner_polys.push_back(&cs.cache.get(q));
+      cs.partner_operands.push_back(soup_[q].operand);
+    }
+    cs.cut_handover.begin_triangle(t, cs.partner_polys, cs.partner_operands);
+    return cs.cut_handover.spread(pieces, pw, [&](std::size_t m, Wnv& front, Wnv& back) {
+      return classify_from_outside(tracer_, pieces[m].poly, o, (std::uint64_t{id} << 20) ^ (m << 10), front, back,
+                                   cs.trace);
     });
-    return ok.load();
   }
 
   /// The winding numbers of untouched triangle id's component.

@@ -16,11 +16,16 @@
 //     (Fig. 8), transverse ones cut along their planes where the chord has
 //     length (C3). No other polygon can cut t: every polygon meeting t is a
 //     partner (its box meets t's), and t's own operand never crosses t.
-//  3. each piece is classified by a segment trace from a point outside the
-//     root box (winding numbers 0) along t's dominant axis onto a point
-//     strictly inside the piece (Section 3.4's tweak at the end point), the
-//     other operands' triangles found through their trees. t's operand is
-//     solid: 0 in front of t, 1 behind, its triangles never traced.
+//  3. each piece takes its winding numbers from across an input edge (an
+//     untouched neighbour's component, or a neighbour's piece:
+//     solid_handover.hpp), or from a piece of t across a cut line
+//     (CutHandover: the cutting partner's operand changes by one where the
+//     shared stretch lies in the partner), or else by a segment trace from a
+//     point outside the root box (winding numbers 0) along t's dominant
+//     axis onto a point strictly inside the piece (Section 3.4's tweak at
+//     the end point), the other operands' triangles found through their
+//     trees. t's operand is solid: 0 in front of t, 1 behind, its triangles
+//     never traced.
 //  4. untouched triangles of one operand joined across manifold edges
 //     (GridTriangles::neighbors) share their winding numbers: near such an
 //     edge only the two triangles exist (no other operand comes near, and a

@@ -31,10 +31,12 @@ TEST(SolidPath, RunsExactlyWhenEveryOperandIsSolid) {
   EXPECT_FALSE(r.stats.solid_path);
 }
 
-TEST(SolidPath, AFaceUnderManySliversIsCutAndClassifiedInParallel) {
+TEST(SolidPath, AFaceUnderManySliversIsCutInParallelAndClassifiedAcrossItsCuts) {
   // 150 thin slabs stand on the top face of a box: each of the face's two
   // triangles is cut by ~300 partner planes into more pieces than the
-  // solid path cuts and classifies one by one (its parallel cut and traces).
+  // solid path cuts one by one (its parallel cut), and its pieces take
+  // their winding numbers from each other across the cut lines
+  // (CutHandover::spread with its index of cut edges).
   // Same surface as the subdivision (run_checked), the same mesh at every
   // thread count.
   std::vector<Mesh> slabs;
