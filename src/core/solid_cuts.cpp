@@ -93,9 +93,12 @@ bool cut_triangle(const Polygon& t, std::uint32_t id, PolygonCache& cache, CutSc
   // partners along its length would test every piece against every one).
   cs.boxes.clear();
   for (const Piece& p : cs.pieces) cs.boxes.push_back(piece_box(p.poly));
-  for (const std::uint32_t q : cs.partners) {
+  cs.coplanar.assign(cs.partners.size(), 0);
+  for (std::size_t k = 0; k < cs.partners.size(); ++k) {
+    const std::uint32_t q = cs.partners[k];
     const Polygon& o = cache.get(q);
-    if (coplanar(t.support, o.support) || !touches_plane(cache.corners(q), t.support, cs.other_signs)) continue;
+    cs.coplanar[k] = coplanar(t.support, o.support) ? 1 : 0;
+    if (cs.coplanar[k] || !touches_plane(cache.corners(q), t.support, cs.other_signs)) continue;
     const PieceBox ob = piece_box(o);
     const std::size_t n = cs.pieces.size();
     if (n >= kParallelCut) {

@@ -72,6 +72,8 @@ struct CutScratch {
   std::vector<std::int8_t> other_signs, signs;
   std::vector<Plane> cons;
   Polygon neg, pos;
+  /// Per partner (same order): its plane is t's (cut_triangle records it).
+  std::vector<char> coplanar;
 };
 
 /// t's pieces (Section 4.3 with closed operands and no box): what lower-id

@@ -125,26 +125,20 @@ std::array<std::int64_t, 3> CutHandover::key_of(const Plane& e) {
 }
 
 void CutHandover::begin_triangle(const Polygon& t, std::span<const Polygon* const> partner,
-                                 std::span<const std::uint32_t> partner_operand) {
+                                 std::span<const std::uint32_t> partner_operand, std::span<const char> coplanar_partner) {
   t_ = &t;
   partner_ = partner;
   operand_ = partner_operand;
   lines_.clear();
-  bool coplanar_partner = false;
-  for (std::size_t i = 0; i < partner.size(); ++i) {
-    if (coplanar(t.support, partner[i]->support)) {
-      coplanar_partner = true;
-      continue;
-    }
+  const bool any_coplanar = std::find(coplanar_partner.begin(), coplanar_partner.end(), 1) != coplanar_partner.end();
+  if (any_coplanar) return;  // every line blocked: line_of finds none
+  for (std::size_t i = 0; i < partner.size(); ++i)
     lines_.push_back({key_of(partner[i]->support), partner[i]->support, i, -1});
-  }
   std::sort(lines_.begin(), lines_.end(), [](const Line& a, const Line& b) {
     return a.key != b.key ? a.key < b.key : a.partner < b.partner;
   });
-  // Two partners on one plane both hold its lines; a coplanar partner's
-  // cuts are along its edges: blocked.
+  // Two partners on one plane both hold its lines: blocked.
   for (std::size_t i = 0; i < lines_.size(); ++i) {
-    if (coplanar_partner) lines_[i].state = 1;
     for (std::size_t j = i + 1; j < lines_.size() && lines_[j].key == lines_[i].key; ++j)
       if (lines_[j].plane == lines_[i].plane || lines_[j].plane == -lines_[i].plane) lines_[i].state = lines_[j].state = 1;
   }

@@ -118,10 +118,10 @@ struct PieceWindings {
 
 class CutHandover {
  public:
-  /// Starts triangle t with its partners: their built polygons (`partner`,
-  /// same order) and operands.
+  /// Starts triangle t with its partners: their built polygons (`partner`),
+  /// operands and whether each is coplanar with t (same order).
   void begin_triangle(const Polygon& t, std::span<const Polygon* const> partner,
-                      std::span<const std::uint32_t> partner_operand);
+                      std::span<const std::uint32_t> partner_operand, std::span<const char> coplanar_partner);
 
   /// The cut line whose partner's plane is e (either orientation), or -1:
   /// e is t's input edge or a coplanar partner's edge, not a partner's plane.

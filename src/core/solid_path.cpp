@@ -270,6 +270,8 @@ class SolidSolver {
 
  private:
   static constexpr std::size_t kChunk = 256;
+  /// At least this many pieces of one triangle to trace: traced side by side.
+  static constexpr std::size_t kParallelTraces = 64;
 
   /// Per worker: what a chunk's triangles reuse.
   struct ChunkScratch {
@@ -349,17 +351,64 @@ class SolidSolver {
     for (std::size_t m = 0; m < n; ++m)
       if (known_across_input_edge(pieces[m].poly, t, id, o, cs.handover, cs.front, cs.back)) pw.store(m, cs.front, cs.back);
     if (pw.complete()) return true;
+    // A coplanar partner blocks every cut line (CutHandover): the rest is traced.
+    if (std::find(cs.cut.coplanar.begin(), cs.cut.coplanar.end(), 1) != cs.cut.coplanar.end())
+      return trace_rest(pieces, id, o, cs);
     cs.partner_polys.clear();
     cs.partner_operands.clear();
     for (const std::uint32_t q : cs.cut.partners) {
       cs.partner_polys.push_back(&cs.cache.get(q));
       cs.partner_operands.push_back(soup_[q].operand);
     }
-    cs.cut_handover.begin_triangle(t, cs.partner_polys, cs.partner_operands);
+    cs.cut_handover.begin_triangle(t, cs.partner_polys, cs.partner_operands, cs.cut.coplanar);
     return cs.cut_handover.spread(pieces, pw, [&](std::size_t m, Wnv& front, Wnv& back) {
-      return classify_from_outside(tracer_, pieces[m].poly, o, (std::uint64_t{id} << 20) ^ (m << 10), front, back,
-                                   cs.trace);
+      return trace_piece(pieces[m].poly, id, m, o, front, back, cs.trace);
     });
+  }
+
+  bool trace_piece(const Polygon& f, std::uint32_t id, std::size_t m, std::uint32_t o, Wnv& front, Wnv& back,
+                   TraceScratch& sc) const {
+    return classify_from_outside(tracer_, f, o, (std::uint64_t{id} << 20) ^ (m << 10), front, back, sc);
+  }
+
+  /// Traces the pieces still unknown in cs.windings: side by side when
+  /// there are many (a face under a pile of coplanar-touching slivers would
+  /// hold one thread; the values are exact, so the order does not matter).
+  bool trace_rest(const std::vector<Piece>& pieces, std::uint32_t id, std::uint32_t o, ChunkScratch& cs) const {
+    PieceWindings& pw = cs.windings;
+    const std::size_t n = pieces.size();
+    if (n - pw.order.size() < kParallelTraces) {
+      for (std::size_t m = 0; m < n; ++m) {
+        if (pw.known[m]) continue;
+        if (!trace_piece(pieces[m].poly, id, m, o, cs.front, cs.back, cs.trace)) return false;
+        pw.store(m, cs.front, cs.back);
+      }
+      return true;
+    }
+    std::atomic<bool> ok{true};
+    tbb::this_task_arena::isolate([&] {  // waiting here runs only these pieces, not other chunks
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8), [&](const auto& r) {
+        TraceScratch scratch;
+        Wnv front, back;
+        for (std::size_t m = r.begin(); m != r.end() && ok.load(std::memory_order_relaxed); ++m) {
+          if (pw.known[m]) continue;
+          if (!trace_piece(pieces[m].poly, id, m, o, front, back, scratch)) {
+            ok = false;
+            return;
+          }
+          const auto at = pw.w.begin() + static_cast<std::ptrdiff_t>(2 * operands_ * m);  // m's own slots
+          std::copy(front.begin(), front.end(), at);
+          std::copy(back.begin(), back.end(), at + static_cast<std::ptrdiff_t>(operands_));
+        }
+      });
+    });
+    if (!ok.load()) return false;
+    for (std::size_t m = 0; m < n; ++m)
+      if (!pw.known[m]) {
+        pw.known[m] = 1;
+        pw.order.push_back(static_cast<std::uint32_t>(m));
+      }
+    return true;
   }
 
   /// The winding numbers of untouched triangle id's component.
