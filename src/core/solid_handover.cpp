@@ -125,13 +125,11 @@ std::array<std::int64_t, 3> CutHandover::key_of(const Plane& e) {
 }
 
 void CutHandover::begin_triangle(const Polygon& t, std::span<const Polygon* const> partner,
-                                 std::span<const std::uint32_t> partner_operand, std::span<const char> coplanar_partner) {
+                                 std::span<const std::uint32_t> partner_operand) {
   t_ = &t;
   partner_ = partner;
   operand_ = partner_operand;
   lines_.clear();
-  const bool any_coplanar = std::find(coplanar_partner.begin(), coplanar_partner.end(), 1) != coplanar_partner.end();
-  if (any_coplanar) return;  // every line blocked: line_of finds none
   for (std::size_t i = 0; i < partner.size(); ++i)
     lines_.push_back({key_of(partner[i]->support), partner[i]->support, i, -1});
   std::sort(lines_.begin(), lines_.end(), [](const Line& a, const Line& b) {

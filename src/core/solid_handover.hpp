@@ -118,13 +118,14 @@ struct PieceWindings {
 
 class CutHandover {
  public:
-  /// Starts triangle t with its partners: their built polygons (`partner`),
-  /// operands and whether each is coplanar with t (same order).
+  /// Starts triangle t with its partners: their built polygons (`partner`)
+  /// and operands (same order). None may be coplanar with t: a coplanar
+  /// partner blocks every line, so the caller traces instead.
   void begin_triangle(const Polygon& t, std::span<const Polygon* const> partner,
-                      std::span<const std::uint32_t> partner_operand, std::span<const char> coplanar_partner);
+                      std::span<const std::uint32_t> partner_operand);
 
   /// The cut line whose partner's plane is e (either orientation), or -1:
-  /// e is t's input edge or a coplanar partner's edge, not a partner's plane.
+  /// e is t's input edge, not a partner's plane.
   int line_of(const Plane& e) const;
 
   /// f's winding numbers (front, back) from g's (g_front, g_back) across

@@ -360,7 +360,7 @@ class SolidSolver {
       cs.partner_polys.push_back(&cs.cache.get(q));
       cs.partner_operands.push_back(soup_[q].operand);
     }
-    cs.cut_handover.begin_triangle(t, cs.partner_polys, cs.partner_operands, cs.cut.coplanar);
+    cs.cut_handover.begin_triangle(t, cs.partner_polys, cs.partner_operands);
     return cs.cut_handover.spread(pieces, pw, [&](std::size_t m, Wnv& front, Wnv& back) {
       return trace_piece(pieces[m].poly, id, m, o, front, back, cs.trace);
     });
