@@ -32,7 +32,42 @@ struct Partners {
   std::span<const std::uint32_t> of(std::uint32_t id) const { return {ids.data() + begin[id], begin[id + 1] - begin[id]}; }
 };
 
+/// A box's largest side (grid units): which of two triangles is the larger.
+std::int32_t extent(const Box32& b) {
+  return std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
+}
+
 using PairSink = tbb::enumerable_thread_specific<std::vector<std::pair<std::uint32_t, std::uint32_t>>>;
+
+/// The meeting pairs of leaf x of X (at x_base) and leaf y of Y: each of x's
+/// triangles whose box meets y's against y's triangles, by x's plane first
+/// (apart_triangles_meet). Reported as (x's id, y's id), or swapped.
+/// Inlined: it runs once per leaf pair, most of which test few pairs (as a
+/// call it cost the bunny pair's union 0.4% more instructions).
+template <bool swap>
+[[gnu::always_inline]] inline void leaf_meeting_pairs(const GridTriangles& grid, const TriangleTree& X,
+                                                      std::uint32_t x_base, std::size_t x, const TriangleTree& Y,
+                                                      std::uint32_t y_base, std::size_t y, PairSink& sink) {
+  const std::size_t xb = X.leaf_slots(x).first, yb = Y.leaf_slots(y).first;
+  const Box32 y_box = Y.node(y);
+  // x's triangles whose boxes meet y's node box, eight at a time.
+  for (unsigned near = X.overlap_mask(x, y_box); near != 0; near &= near - 1) {
+    const std::size_t i = xb + static_cast<std::size_t>(std::countr_zero(near));
+    unsigned m = Y.overlap_mask(y, X.box(i));
+    if (m == 0) continue;
+    const std::uint32_t ix = x_base + X.item(i);
+    const std::array<IntPoint, 3>& tx = grid.corners[ix];
+    const std::array<std::int64_t, 3> nx = grid_normal(tx[0], tx[1], tx[2]);
+    // All of y beside x's plane: none of its triangles meets x (pair019:
+    // 82% of the pairs the boxes leave, dismissed eight at a time).
+    if (std::popcount(m) > 2 && box_clearly_beside(y_box, tx[0], nx)) continue;
+    for (; m != 0; m &= m - 1) {
+      const std::uint32_t iy = y_base + Y.item(yb + static_cast<std::size_t>(std::countr_zero(m)));
+      if (apart_triangles_meet(tx, nx, grid.corners[iy]))
+        sink.local().emplace_back(swap ? iy : ix, swap ? ix : iy);
+    }
+  }
+}
 
 /// Collects every pair of A x B that meets (boxes first, then exactly:
 /// triangles_meet), in subtrees a of A at depth da and b of B at depth db,
@@ -42,24 +77,18 @@ void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32
                    const TriangleTree& B, std::uint32_t b_base, std::size_t b, int db, PairSink& sink) {
   const bool a_leaf = da == A.depth(), b_leaf = db == B.depth();
   if (a_leaf && b_leaf) {
-    const std::size_t ab = A.leaf_slots(a).first, bb = B.leaf_slots(b).first;
-    if (ab >= A.size() || bb >= B.size()) return;  // empty leaves (their boxes meet nothing anyway)
-    // a's triangles whose boxes meet b's node box, eight at a time.
-    for (unsigned near = A.overlap_mask(a, B.node(b)); near != 0; near &= near - 1) {
-      const std::size_t i = ab + static_cast<std::size_t>(std::countr_zero(near));
-      const Box32 box = A.box(i);
-      const std::uint32_t ia = a_base + A.item(i);
-      const std::array<IntPoint, 3>& ta = grid.corners[ia];
-      unsigned m = B.overlap_mask(b, box);
-      if (m == 0) continue;
-      // apart_triangles_meet rejects first by b's corners against a's plane
-      // (beside_plane), before it computes b's normal.
-      const std::array<std::int64_t, 3> na = grid_normal(ta[0], ta[1], ta[2]);
-      for (; m != 0; m &= m - 1) {
-        const std::uint32_t ib = b_base + B.item(bb + static_cast<std::size_t>(std::countr_zero(m)));
-        const std::array<IntPoint, 3>& tb = grid.corners[ib];
-        if (apart_triangles_meet(ta, na, tb)) sink.local().emplace_back(ia, ib);
-      }
+    if (A.leaf_slots(a).first >= A.size() || B.leaf_slots(b).first >= B.size()) return;  // empty leaves
+    // The first test of a pair (the other's corners against one plane)
+    // rejects most pairs, but only with the larger triangle's plane: a small
+    // triangle beside a large one's plane has the large one crossing its own
+    // (pair001, a bunny and a CAD part: 85% of the pairs passed the test by
+    // a's plane and failed the one by b's). Which is larger is
+    // judged once per leaf pair, by the leaves' boxes. The answer is exact
+    // either way, and the pairs are sorted after.
+    if (extent(B.node(b)) > 2 * extent(A.node(a))) {
+      leaf_meeting_pairs<true>(grid, B, b_base, b, A, a_base, a, sink);
+    } else {
+      leaf_meeting_pairs<false>(grid, A, a_base, a, B, b_base, b, sink);
     }
     return;
   }

@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <bit>
+#include <cmath>
 
 #include "core/sort_pairs.hpp"
 
@@ -34,6 +35,28 @@ std::uint64_t morton_key(const Box32& b) {
 }
 
 }  // namespace
+
+bool box_clearly_beside(const Box32& box, const IntPoint& o, const std::array<std::int64_t, 3>& n) {
+  // Box corners minus o are below 2^27 and the normal's components below
+  // 2^53: both exact in double. Each product (< 2^80) is rounded once, and
+  // each extreme (the sum over the axes of the larger, or the smaller,
+  // product) twice more: its error is below 3.01 * 2^-53 of the products'
+  // magnitudes, which the margin of 2^-50 of them covers. Rounding is
+  // monotone, so the larger rounded product is the rounded larger one.
+  static_assert(kCoordLimit <= (std::int64_t{1} << 25) && 2 * kCoordLimit + 1 < (std::int64_t{1} << 53),
+                "box corner - o is exact in double");
+  const double origin[3] = {static_cast<double>(o.x), static_cast<double>(o.y), static_cast<double>(o.z)};
+  double most = 0, least = 0, size = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const double nk = static_cast<double>(n[k]);
+    const double lo = nk * (box.lo[k] - origin[k]), hi = nk * (box.hi[k] - origin[k]);
+    most += std::max(lo, hi);
+    least += std::min(lo, hi);
+    size += std::max(std::abs(lo), std::abs(hi));
+  }
+  const double margin = size * 0x1p-50;
+  return most < -margin || least > margin;
+}
 
 Box32 box_of(const std::array<IntPoint, 3>& t) {
   Box32 b;

@@ -50,6 +50,12 @@ inline bool overlap(const Box32& a, const Box32& b) {
 
 Box32 box_of(const std::array<IntPoint, 3>& t);
 
+/// True if the box lies clearly on one side of the plane through grid point
+/// o with normal n (a grid triangle's grid_normal, |n_k| < 2^53): all its
+/// corners strictly on one side. A filter in double: it may miss a box that
+/// is beside the plane, never the reverse.
+bool box_clearly_beside(const Box32& box, const IntPoint& o, const std::array<std::int64_t, 3>& n);
+
 /// The smallest integer box containing the double box [lo, hi] (clamped to
 /// the int32 range), for queries with a conservative double box.
 Box32 enclosing_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi);
