@@ -34,9 +34,16 @@ class LeafVertexIds {
     });
   }
 
-  /// Bit k set iff slot k of the leaf shares one or two vertices with a
-  /// triangle whose vertex ids are `ids` (three shared: the same triangle).
-  unsigned neighbour_mask(std::size_t leaf_node, const std::array<std::uint32_t, 3>& ids) const {
+  /// Per slot of the leaf, whether its triangle shares vertices with a
+  /// triangle whose vertex ids are `ids`: `neighbours` bit k set iff slot k
+  /// shares one or two (three shared: the same triangle), `sharing` iff it
+  /// shares any.
+  struct Masks {
+    unsigned neighbours = 0, sharing = 0;
+    bool operator==(const Masks&) const = default;
+  };
+
+  Masks shared_masks(std::size_t leaf_node, const std::array<std::uint32_t, 3>& ids) const {
 #if defined(__SSE2__)
     const Block& b = block_[leaf_node - first_leaf_];
     static_assert(TriangleTree::kLeaf == 8, "two 4-lane vectors per corner");
@@ -55,23 +62,28 @@ class LeafVertexIds {
       const __m128i m = _mm_or_si128(_mm_cmpeq_epi32(count, _mm_set1_epi32(-1)), _mm_cmpeq_epi32(count, _mm_set1_epi32(-2)));
       return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(m)));
     };
-    return one_or_two(count0) | one_or_two(count1) << 4;
+    const auto any = [](__m128i count) {
+      const __m128i none = _mm_cmpeq_epi32(count, _mm_setzero_si128());
+      return ~static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(none))) & 0xfu;
+    };
+    return {one_or_two(count0) | one_or_two(count1) << 4, any(count0) | any(count1) << 4};
 #else
-    return neighbour_mask_portable(leaf_node, ids);
+    return shared_masks_portable(leaf_node, ids);
 #endif
   }
 
-  /// The same without vector instructions (what neighbour_mask is where SSE2 is missing).
-  unsigned neighbour_mask_portable(std::size_t leaf_node, const std::array<std::uint32_t, 3>& ids) const {
+  /// The same without vector instructions (what shared_masks is where SSE2 is missing).
+  Masks shared_masks_portable(std::size_t leaf_node, const std::array<std::uint32_t, 3>& ids) const {
     const Block& b = block_[leaf_node - first_leaf_];
-    unsigned mask = 0;
+    Masks masks;
     for (std::size_t k = 0; k < TriangleTree::kLeaf; ++k) {
       int shared = 0;
       for (int c = 0; c < 3; ++c)
         for (const std::uint32_t v : ids) shared += b.id[c][k] == v;
-      mask |= static_cast<unsigned>(shared == 1 || shared == 2) << k;
+      masks.neighbours |= static_cast<unsigned>(shared == 1 || shared == 2) << k;
+      masks.sharing |= static_cast<unsigned>(shared > 0) << k;
     }
-    return mask;
+    return masks;
   }
 
  private:

@@ -1,6 +1,6 @@
 // The proof's neighbour masks (src/core/leaf_vertex_ids.hpp): per leaf
 // slot, whether its triangle shares one or two vertex ids with a given
-// triangle, through vector compares and the portable loop alike, against a
+// triangle, and whether it shares any, through vector compares and the portable loop alike, against a
 // brute-force count; empty slots of a partly filled last leaf never answer.
 #include <gtest/gtest.h>
 
@@ -36,7 +36,7 @@ TEST(LeafVertexIds, MasksMatchSharedVertexCounts) {
       const std::array<std::uint32_t, 3> query = tris[rng() % n].id;
       for (std::size_t leaf = tree.first_leaf(); leaf < tree.first_leaf() + (n + 7) / 8; ++leaf) {
         const auto [b, e] = tree.leaf_slots(leaf);
-        unsigned want = 0;
+        core::LeafVertexIds::Masks want;
         for (std::size_t s = b; s < e; ++s) {
           int shared = 0;
           for (const std::uint32_t u : tris[tree.item(s)].id)
@@ -44,10 +44,11 @@ TEST(LeafVertexIds, MasksMatchSharedVertexCounts) {
           one += shared == 1;
           two += shared == 2;
           three += shared == 3;
-          want |= static_cast<unsigned>(shared == 1 || shared == 2) << (s - b);
+          want.neighbours |= static_cast<unsigned>(shared == 1 || shared == 2) << (s - b);
+          want.sharing |= static_cast<unsigned>(shared > 0) << (s - b);
         }
-        ASSERT_EQ(ids.neighbour_mask(leaf, query), want);
-        ASSERT_EQ(ids.neighbour_mask_portable(leaf, query), want);
+        ASSERT_TRUE(ids.shared_masks(leaf, query) == want);
+        ASSERT_TRUE(ids.shared_masks_portable(leaf, query) == want);
       }
     }
   }
