@@ -14,6 +14,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/leaf_diagonals.hpp"
 #include "core/leaf_vertex_ids.hpp"
 #include "core/triangle_tree.hpp"
 
@@ -37,6 +38,7 @@ class Search {
     }
     tree_ptr_ = tree;
     ids_.emplace(*tree, tris);
+    diagonals_.emplace(*tree, tris);
   }
 
   ContactSearchResult run() {
@@ -132,11 +134,6 @@ class Search {
     const std::size_t ab = tree().leaf_slots(a).first;
     const auto [bb, be] = tree().leaf_slots(b);
     if (ab >= tree().size()) return;  // a leaf past the last triangle (self() does not test its box)
-    // b's diagonal extents, computed when a candidate first needs one (once
-    // per leaf pair instead of once per pair; not stored per triangle: 32
-    // bytes each at the proof's peak).
-    std::array<DiagonalExtent, TriangleTree::kLeaf> extent_b;
-    unsigned have_b = 0;
     // a's triangles whose boxes meet b's node box, eight at a time (one test
     // per triangle of a instead of one per pair).
     for (unsigned near = tree().overlap_mask(a, tree().node(b)); near != 0; near &= near - 1) {
@@ -153,19 +150,14 @@ class Search {
       if (candidates == 0) continue;
       const LeafVertexIds::Masks shared = ids_->shared_masks(b, ti.id);
       if (ti.embedded == 7) candidates &= ~shared.neighbours;
+      // Boxes that meet, diagonal extents that do not: long slivers across
+      // the axes (EMBER case 582, pair020: 60-70% of the pairs the boxes
+      // leave), dismissed for a fraction of the exact test's cost.
+      if (candidates != 0) candidates &= ~diagonals_->apart_mask(b, diagonals_->extent(i));
       if (candidates == 0) continue;
-      const DiagonalExtent ei = diagonal_extent(ti.p);
       for (unsigned m = candidates; m != 0; m &= m - 1) {
         const int slot = std::countr_zero(m);
         const ContactTriangle& tj = tris_[tree().item(bb + static_cast<std::size_t>(slot))];
-        if (!(have_b >> slot & 1u)) {
-          extent_b[static_cast<std::size_t>(slot)] = diagonal_extent(tj.p);
-          have_b |= 1u << slot;
-        }
-        // Boxes that meet, diagonal extents that do not: long slivers across
-        // the axes (EMBER case 582, pair020: 60-70% of the pairs the boxes
-        // leave), dismissed for a fraction of the exact test's cost.
-        if (diagonally_apart(ei, extent_b[static_cast<std::size_t>(slot)])) continue;
         // Most pairs left share no vertex (pair019, EMBER case 84: all but
         // 0.1%): their test is apart_triangles_meet, without the shared
         // vertex bookkeeping of triangles_meet_improperly (a third of its cost).
@@ -181,6 +173,7 @@ class Search {
   std::span<const ContactTriangle> tris_;
   TriangleTree own_tree_;  ///< when the caller gave none
   std::optional<LeafVertexIds> ids_;
+  std::optional<LeafDiagonals> diagonals_;
   const TriangleTree* tree_ptr_ = nullptr;
   std::size_t max_pairs_;
   std::size_t budget_ = 0;
