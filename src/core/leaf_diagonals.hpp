@@ -9,8 +9,6 @@
 #include <emmintrin.h>
 #endif
 
-#include <tbb/parallel_for.h>
-
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -28,19 +26,15 @@ static_assert(3 * kCoordLimit < std::numeric_limits<std::int32_t>::max(), "diago
 class LeafDiagonals {
  public:
   LeafDiagonals(const TriangleTree& tree, std::span<const ContactTriangle> tris) : first_leaf_(tree.first_leaf()) {
-    constexpr std::size_t L = TriangleTree::kLeaf;
-    block_.resize((tree.size() + L - 1) / L);
-    tbb::parallel_for(std::size_t{0}, block_.size(), [&](std::size_t k) {
-      for (std::size_t s = 0; s < L; ++s) {
-        // Empty slots: an extent apart from everything (never a candidate anyway).
-        DiagonalExtent e{};
-        e.lo.fill(std::numeric_limits<std::int32_t>::max());
-        e.hi.fill(std::numeric_limits<std::int32_t>::min());
-        if (k * L + s < tree.size()) e = diagonal_extent(tris[tree.item(k * L + s)].p);
-        for (std::size_t d = 0; d < 4; ++d) {
-          block_[k].lo[d][s] = static_cast<std::int32_t>(e.lo[d]);
-          block_[k].hi[d][s] = static_cast<std::int32_t>(e.hi[d]);
-        }
+    tree.fill_leaf_blocks(block_, [&](Block& b, std::size_t s, std::uint32_t item) {
+      // Empty slots: an extent apart from everything (never a candidate anyway).
+      DiagonalExtent e{};
+      e.lo.fill(std::numeric_limits<std::int32_t>::max());
+      e.hi.fill(std::numeric_limits<std::int32_t>::min());
+      if (item != TriangleTree::kNoItem) e = diagonal_extent(tris[item].p);
+      for (std::size_t d = 0; d < 4; ++d) {
+        b.lo[d][s] = static_cast<std::int32_t>(e.lo[d]);
+        b.hi[d][s] = static_cast<std::int32_t>(e.hi[d]);
       }
     });
   }

@@ -7,8 +7,6 @@
 #include <emmintrin.h>
 #endif
 
-#include <tbb/parallel_for.h>
-
 #include <array>
 #include <cstdint>
 #include <span>
@@ -25,12 +23,8 @@ namespace ember::core {
 class LeafVertexIds {
  public:
   LeafVertexIds(const TriangleTree& tree, std::span<const ContactTriangle> tris) : first_leaf_(tree.first_leaf()) {
-    constexpr std::size_t L = TriangleTree::kLeaf;
-    block_.resize((tree.size() + L - 1) / L);
-    tbb::parallel_for(std::size_t{0}, block_.size(), [&](std::size_t k) {
-      for (std::size_t s = 0; s < L; ++s)
-        for (int c = 0; c < 3; ++c)
-          block_[k].id[c][s] = k * L + s < tree.size() ? tris[tree.item(k * L + s)].id[c] : kNoVertex;
+    tree.fill_leaf_blocks(block_, [&](Block& b, std::size_t s, std::uint32_t item) {
+      for (int c = 0; c < 3; ++c) b.id[c][s] = item != TriangleTree::kNoItem ? tris[item].id[c] : kNoVertex;
     });
   }
 

@@ -20,6 +20,8 @@
 #include <span>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
 #include "ember/geometry/plane.hpp"
 
 namespace ember::core {
@@ -75,6 +77,18 @@ class TriangleTree {
   bool empty() const { return item_.empty(); }
   /// The triangle in Morton slot `slot`, and its box.
   std::uint32_t item(std::size_t slot) const { return item_[slot]; }
+  /// Per-leaf data laid out like the leaves' boxes: one Block per filled
+  /// leaf, `blocks` resized and each block's slot s written in parallel by
+  /// fill(block, s, item) (item: the triangle in that slot, or kNoItem for
+  /// the empty slots of the last leaf).
+  static constexpr std::uint32_t kNoItem = UINT32_MAX;
+  template <typename Block, typename Fill>
+  void fill_leaf_blocks(std::vector<Block>& blocks, Fill&& fill) const {
+    blocks.resize((size() + kLeaf - 1) / kLeaf);
+    tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t k) {
+      for (std::size_t s = 0; s < kLeaf; ++s) fill(blocks[k], s, k * kLeaf + s < size() ? item(k * kLeaf + s) : kNoItem);
+    });
+  }
   Box32 box(std::size_t slot) const {
     const LeafBlock& b = block_[slot / kLeaf];
     const std::size_t k = slot % kLeaf;
