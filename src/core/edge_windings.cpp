@@ -3,12 +3,59 @@
 #include "core/edge_windings.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <utility>
 
 #include "ember/geometry/exact_order.hpp"
 
 namespace ember::core {
+
+std::vector<std::uint32_t> edge_neighbour_order(const Soup& soup, std::size_t begin, std::size_t end) {
+  const std::size_t n = end - begin;
+  // Each polygon's three input edges as (sorted corner pair, polygon); the
+  // polygons of one run of equal edges are neighbours.
+  struct Use {
+    std::array<std::int64_t, 6> edge;
+    std::uint32_t poly;
+  };
+  std::vector<Use> uses(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::array<IntPoint, 3>& c = *soup[begin + i].corners;
+    for (std::size_t k = 0; k < 3; ++k) {
+      std::array<std::int64_t, 3> a{c[k].x, c[k].y, c[k].z}, b{c[(k + 1) % 3].x, c[(k + 1) % 3].y, c[(k + 1) % 3].z};
+      if (b < a) std::swap(a, b);
+      uses[3 * i + k] = {{a[0], a[1], a[2], b[0], b[1], b[2]}, static_cast<std::uint32_t>(i)};
+    }
+  }
+  std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) { return x.edge != y.edge ? x.edge < y.edge : x.poly < y.poly; });
+  std::vector<std::uint32_t> run_begin, runs_of(3 * n);  // per polygon, its edges' runs
+  std::vector<std::uint8_t> filled(n, 0);
+  for (std::size_t u = 0; u < uses.size(); ++u) {
+    if (u == 0 || uses[u].edge != uses[u - 1].edge) run_begin.push_back(static_cast<std::uint32_t>(u));
+    const std::uint32_t p = uses[u].poly;
+    runs_of[3 * p + filled[p]++] = static_cast<std::uint32_t>(run_begin.size() - 1);
+  }
+  run_begin.push_back(static_cast<std::uint32_t>(uses.size()));
+  std::vector<std::uint32_t> order;
+  order.reserve(n);
+  std::vector<char> seen(n, 0);
+  for (std::size_t start = 0; start < n; ++start) {
+    if (seen[start]) continue;
+    seen[start] = 1;
+    for (std::size_t head = order.size(), at = (order.push_back(static_cast<std::uint32_t>(start)), head); at < order.size(); ++at) {
+      const std::uint32_t p = order[at];
+      for (std::size_t k = 0; k < 3; ++k)
+        for (std::uint32_t u = run_begin[runs_of[3 * p + k]]; u < run_begin[runs_of[3 * p + k] + 1]; ++u)
+          if (!seen[uses[u].poly]) {
+            seen[uses[u].poly] = 1;
+            order.push_back(uses[u].poly);
+          }
+    }
+  }
+  for (std::uint32_t& p : order) p += static_cast<std::uint32_t>(begin);
+  return order;
+}
 
 EdgeWindings::EdgeWindings(const std::vector<char>& closed, const Box& box, std::size_t expected_edges)
     : operands_(closed.size()), closed_(closed), box_(box) {

@@ -39,6 +39,14 @@
 
 namespace ember::core {
 
+/// The polygons [begin, end) of a soup in an order in which each polygon but
+/// the first of its group has an earlier one whose input triangle shares an
+/// input edge with its own (breadth first over shared edges, from each
+/// unvisited polygon in soup order). Solving in this order, a polygon's
+/// neighbours across input edges are classified before it wherever they can
+/// be, so EdgeWindings hands over to it instead of a trace.
+std::vector<std::uint32_t> edge_neighbour_order(const Soup& soup, std::size_t begin, std::size_t end);
+
 /// Whether a piece edge from -> to and a neighbour's piece edge n_from ->
 /// n_to, both on the input edge a -> b's line, the neighbour's running the
 /// other way (b -> a), share a stretch of positive length. Exact.

@@ -422,13 +422,19 @@ void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafInd
       throw Error("ember: could not classify a polygon piece (no non-degenerate trace path found); "
                   "this input is too degenerate for the current implementation");
   };
+  // Polygons are solved in edge_neighbour_order, so that more of them take
+  // their winding numbers across input edges (the sliver pile: 111,284 traces
+  // in soup order, 14,815 in this one), and their pieces are emitted in soup
+  // order: `produced` holds them by polygon, from produced_from[ti - begin] on.
+  std::vector<OutputPolygon> produced;
+  std::vector<std::size_t> produced_from(end - begin);
   // `whole`: f is all of t (t's subdivision piece), uncut and untrimmed.
   const auto emit = [&](const SoupPolygon& t, const Polygon& f, bool in_front, bool in_back, bool whole) {
     if (in_front == in_back) return;
     if (whole) {
       // f is t's whole subdivision piece: emitted without its vertices
       // (unbuilt or by path, solve.hpp), like the early-outs' pieces.
-      out.push_back(whole_piece_output(t, in_front));
+      produced.push_back(whole_piece_output(t, in_front));
       return;
     }
     // The mesh stage needs a cut piece's vertices, not its edge planes.
@@ -439,7 +445,7 @@ void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafInd
     piece.operand = t.operand;
     piece.flip = in_front;
     piece.splits = t.splits;
-    out.push_back(std::move(piece));
+    produced.push_back(std::move(piece));
   };
   // Each polygon records its pieces' edges on its three input edges; a
   // leaf's pieces are about as many as its polygons. Piles (thousands of
@@ -447,7 +453,9 @@ void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafInd
   constexpr std::size_t kMaxExpectedEdges = 4096;
   EdgeWindings known(ctx.closed, pb.box, std::min(3 * (end - begin), kMaxExpectedEdges));
   std::vector<char> need_front(ctx.operands), need_back(ctx.operands), all(ctx.operands, 1);
-  for (std::size_t ti = begin; ti < end; ++ti) {
+  const std::vector<std::uint32_t> visit = edge_neighbour_order(pb.soup, begin, end);
+  for (const std::uint32_t ti : visit) {
+    produced_from[ti - begin] = produced.size();
     const SoupPolygon& t = pb.soup[ti];
     const bool uncovered = disable_covered(
         pb.soup, t, ctx, std::span<const std::uint32_t>(order.data() + class_begin[ti], class_end[ti] - class_begin[ti]),
@@ -510,6 +518,15 @@ void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafInd
       }
     }
   }
+  // In soup order: polygon ti's pieces run up to the next polygon's start in
+  // the visiting order.
+  std::vector<std::size_t> produced_to(end - begin);
+  for (std::size_t k = 0; k < visit.size(); ++k)
+    produced_to[visit[k] - begin] = k + 1 < visit.size() ? produced_from[visit[k + 1] - begin] : produced.size();
+  out.reserve(out.size() + produced.size());
+  for (std::size_t i = 0; i < end - begin; ++i)
+    std::move(produced.begin() + static_cast<std::ptrdiff_t>(produced_from[i]),
+              produced.begin() + static_cast<std::ptrdiff_t>(produced_to[i]), std::back_inserter(out));
 }
 
 }  // namespace

@@ -5,10 +5,14 @@
 // the most values are handed on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <random>
 #include <vector>
 
 #include "core/indicator.hpp"
+#include "core/edge_windings.hpp"
 #include "core/solve.hpp"
 #include "ember/geometry/exact_order.hpp"
 #include "support/shapes.hpp"
@@ -220,6 +224,75 @@ TEST(EdgeWindings, SliverFan) {
     emitted += expect_same_leaf(s, op, {1, 1});
   }
   EXPECT_GT(emitted, 0u);
+}
+
+TEST(EdgeWindings, NeighbourOrderReachesEachGroupThroughSharedEdges) {
+  // Two spheres and a box, their triangles shuffled (so that soup order is
+  // no walk over the surface): the order must visit every polygon of the
+  // range once, and each polygon but the first of its group (the polygons
+  // connected through shared input edges, found here by union-find) must
+  // come after a polygon sharing an input edge with it. Groups start in soup
+  // order of their first polygon.
+  Scene s;
+  add(s, test::uv_sphere({0, 0, 0}, 0.5, 12, 10), 512);
+  add(s, test::uv_sphere({0.3, 0, 0}, 0.4, 9, 7), 512);
+  add(s, test::box({2, 2, 2}, {3, 3, 3}), 512);
+  std::mt19937 rng(5);
+  std::vector<std::size_t> perm(s.tris.size());
+  std::iota(perm.begin(), perm.end(), 0);
+  std::shuffle(perm.begin(), perm.end(), rng);
+  Soup soup;
+  for (std::size_t i = 0; i < perm.size(); ++i)
+    soup.push_back(unbuilt_triangle(s.tris[perm[i]], static_cast<std::uint32_t>(i), s.operand[perm[i]]));
+  const auto key = [](const IntPoint& a, const IntPoint& b) {
+    std::array<std::int64_t, 6> k{a.x, a.y, a.z, b.x, b.y, b.z};
+    if (std::array<std::int64_t, 3>{b.x, b.y, b.z} < std::array<std::int64_t, 3>{a.x, a.y, a.z}) k = {b.x, b.y, b.z, a.x, a.y, a.z};
+    return k;
+  };
+  const auto share_edge = [&](std::size_t p, std::size_t q) {
+    const auto &c = *soup[p].corners, &d = *soup[q].corners;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (key(c[i], c[(i + 1) % 3]) == key(d[j], d[(j + 1) % 3])) return true;
+    return false;
+  };
+  for (const auto& [begin, end] : {std::pair<std::size_t, std::size_t>{0, soup.size()}, {7, soup.size() / 2}}) {
+    const std::size_t n = end - begin;
+    std::vector<std::size_t> group(n);
+    std::iota(group.begin(), group.end(), 0);
+    const auto find = [&](std::size_t x) {
+      while (group[x] != x) x = group[x] = group[group[x]];
+      return x;
+    };
+    for (std::size_t p = 0; p < n; ++p)
+      for (std::size_t q = p + 1; q < n; ++q)
+        if (share_edge(begin + p, begin + q)) group[std::max(find(p), find(q))] = std::min(find(p), find(q));
+    const std::vector<std::uint32_t> order = edge_neighbour_order(soup, begin, end);
+    ASSERT_EQ(order.size(), n);
+    std::vector<char> seen(n, 0);
+    std::size_t groups = 0, last_first = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      ASSERT_GE(order[k], begin);
+      ASSERT_LT(order[k], end);
+      const std::size_t p = order[k] - begin;
+      ASSERT_FALSE(seen[p]) << "visited twice";
+      seen[p] = 1;
+      bool after_neighbour = false;
+      for (std::size_t j = 0; j < k && !after_neighbour; ++j) after_neighbour = share_edge(order[j], order[k]);
+      if (after_neighbour) continue;
+      // First of its group: the group's smallest index, later than the previous group's.
+      EXPECT_EQ(find(p), p) << "polygon " << p << " starts a group it is not the first of";
+      EXPECT_TRUE(groups == 0 || p > last_first);
+      last_first = p;
+      ++groups;
+    }
+    std::size_t want_groups = 0;
+    for (std::size_t p = 0; p < n; ++p) want_groups += find(p) == p;
+    EXPECT_EQ(groups, want_groups);
+    if (n == soup.size()) {
+      EXPECT_EQ(groups, 3u);  // three closed surfaces (a random half of them falls apart)
+    }
+  }
 }
 
 }  // namespace
