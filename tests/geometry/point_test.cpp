@@ -118,6 +118,39 @@ TEST(GeometryPoint, ToPointAgreesWithIntegerClassify) {
   }
 }
 
+TEST(GeometryPoint, StoredGridPointsClassifyExactlyOnAndNearPlanes) {
+  // classify_exact of a point stored with w = 1 takes the 82-bit integer
+  // classify: against GMP, for corners of the planes' own triangles (exact
+  // zeros, at the cube's corners too), their neighbours one grid step away,
+  // and random points; the general 243-bit value must agree as well. Points
+  // with w = 1 outside the grid's range and a grid point stored with w = 2
+  // are no stored grid points and take the general path.
+  Gen g(14);
+  int zeros = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const auto t = g.triangle();
+    const Plane s = *supporting_plane(t[0], t[1], t[2]);
+    const int k = static_cast<int>(g.rng()() % 3);
+    for (const IntPoint& p : {t[k], IntPoint{t[k].x, t[k].y, t[k].z + (t[k].z > 0 ? -1 : 1)}, g.point()}) {
+      const Point pt = to_point(p);
+      ASSERT_TRUE(stored_grid_point(pt));
+      const int expected = sign_of(dot(to_mp(s), to_mp(p)));
+      zeros += expected == 0;
+      ASSERT_EQ(classify_exact(pt, s), expected);
+      ASSERT_EQ(classify_value(pt, s).sign(), expected);
+      ASSERT_EQ(classify(pt, s), expected);
+    }
+  }
+  EXPECT_GT(zeros, 19000);
+  const Plane s{1, 1, 1, 0};
+  const Point far{PointXYZ(std::int64_t{1} << 40), PointXYZ(-(std::int64_t{1} << 40)), PointXYZ(1), PointW(1), {}};
+  EXPECT_FALSE(stored_grid_point(far));
+  EXPECT_EQ(classify_exact(far, s), 1);
+  const Point scaled{PointXYZ(6), PointXYZ(-4), PointXYZ(-2), PointW(2), {}};  // (3, -2, -1), w = 2
+  EXPECT_FALSE(stored_grid_point(scaled));
+  EXPECT_EQ(classify_exact(scaled, s), 0);
+}
+
 TEST(GeometryPoint, ClassifyAxisAgreesWithGeneralClassify) {
   Gen g(13);
   int zeros = 0;

@@ -68,17 +68,10 @@ inline bool same_point(const Point& a, const Point& b) {
 /// then confirmed exactly: g w == x (26 + 162 bits, inside PointXYZ's 188).
 /// Never wrong: a candidate that fails is no grid point.
 inline std::optional<IntPoint> as_grid_point(const Point& p) {
-  std::int64_t g[3];
   // w = 1 (input vertices, stored by to_point): the numerators are the
-  // coordinates; confirmed by comparing them with the candidate's limbs.
-  if (p.w == PointW(1)) {
-    for (int axis = 0; axis < 3; ++axis) {
-      const PointXYZ& x = detail::coord(p, axis);
-      g[axis] = static_cast<std::int64_t>(x.limb(0));
-      if (g[axis] < -kCoordLimit || g[axis] > kCoordLimit || !(x == PointXYZ(g[axis]))) return std::nullopt;
-    }
-    return IntPoint{g[0], g[1], g[2]};
-  }
+  // coordinates (stored_grid_point).
+  if (p.w == PointW(1)) return stored_grid_point(p);
+  std::int64_t g[3];
   for (int axis = 0; axis < 3; ++axis) {
     const double f = p.f[axis];
     if (!(std::fabs(f) <= static_cast<double>(kCoordLimit) + 1)) return std::nullopt;  // f may err past 2^25

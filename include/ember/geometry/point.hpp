@@ -135,8 +135,29 @@ static_assert(std::is_same_v<decltype((NormalCoef{} * PointXYZ{} + NormalCoef{} 
                              ClassifyValue>,
               "classify: 53+188 = 79+162 = 241 per term, pairwise sums -> 243");
 
-/// Exact side of `pt` relative to `s`: -1, 0, +1 (0: pt lies on s).
-inline int classify_exact(const Point& pt, const Plane& s) { return classify_value(pt, s).sign(); }
+/// The grid point that pt is when it is stored with w = 1 and coordinates
+/// within the grid (|x| <= kCoordLimit): how triangles keep their corners
+/// (to_point), so most vertices of the leaves' and cuts' polygons. Limb
+/// tests only; nullopt for any other representation, even of a grid point.
+inline std::optional<IntPoint> stored_grid_point(const Point& pt) {
+  if (!(pt.w == PointW(1))) return std::nullopt;
+  std::int64_t g[3];
+  const PointXYZ* coords[3] = {&pt.x, &pt.y, &pt.z};
+  for (int axis = 0; axis < 3; ++axis) {
+    g[axis] = static_cast<std::int64_t>(coords[axis]->limb(0));
+    if (g[axis] < -kCoordLimit || g[axis] > kCoordLimit || !(*coords[axis] == PointXYZ(g[axis]))) return std::nullopt;
+  }
+  return IntPoint{g[0], g[1], g[2]};
+}
+
+/// Exact side of `pt` relative to `s`: -1, 0, +1 (0: pt lies on s). A point
+/// stored as a grid point takes the 82-bit integer classify (one __int128)
+/// instead of the 243-bit one: the filter's undecided cases are mostly
+/// vertices lying on the plane, shared input vertices among them.
+inline int classify_exact(const Point& pt, const Plane& s) {
+  if (const std::optional<IntPoint> g = stored_grid_point(pt)) return classify(*g, s);
+  return classify_value(pt, s).sign();
+}
 
 /// A plane's coefficients as doubles, for the classification filter: a, b, c
 /// exactly (|n| <= 2^52), d rounded once (error < u). Converting d (an int128)
