@@ -43,7 +43,8 @@ std::vector<std::uint32_t> edge_neighbour_order(const Soup& soup, std::size_t be
   for (std::size_t start = 0; start < n; ++start) {
     if (seen[start]) continue;
     seen[start] = 1;
-    for (std::size_t head = order.size(), at = (order.push_back(static_cast<std::uint32_t>(start)), head); at < order.size(); ++at) {
+    order.push_back(static_cast<std::uint32_t>(start));
+    for (std::size_t at = order.size() - 1; at < order.size(); ++at) {  // the queue is order's tail
       const std::uint32_t p = order[at];
       for (std::size_t k = 0; k < 3; ++k)
         for (std::uint32_t u = run_begin[runs_of[3 * p + k]]; u < run_begin[runs_of[3 * p + k] + 1]; ++u)

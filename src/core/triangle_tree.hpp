@@ -10,6 +10,8 @@
 #include <emmintrin.h>
 #endif
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -19,8 +21,6 @@
 #include <limits>
 #include <span>
 #include <vector>
-
-#include <tbb/parallel_for.h>
 
 #include "ember/geometry/plane.hpp"
 
