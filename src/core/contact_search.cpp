@@ -31,7 +31,7 @@ class Search {
     if (!tree) {
       std::vector<Box32> boxes(n);
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t i = r.begin(); i != r.end(); ++i) boxes[i] = box_of(tris[i].p);
+        for (std::size_t i = r.begin(); i != r.end(); ++i) boxes[i] = box_of(tris[i].p());
       });
       own_tree_ = TriangleTree(boxes);
       tree = &own_tree_;
@@ -161,7 +161,7 @@ class Search {
         // Most pairs left share no vertex (pair019, EMBER case 84: all but
         // 0.1%): their test is apart_triangles_meet, without the shared
         // vertex bookkeeping of triangles_meet_improperly (a third of its cost).
-        if (!(shared.sharing >> slot & 1u) ? !apart_triangles_meet(ti.p, ti.n, tj.p, tj.n)
+        if (!(shared.sharing >> slot & 1u) ? !apart_triangles_meet(ti.p(), ti.n, tj.p(), tj.n)
                                            : !triangles_meet_improperly(ti, tj))
           continue;
         if (found_.fetch_add(1) + 1 >= max_pairs_) return;

@@ -31,7 +31,7 @@ class LeafDiagonals {
       DiagonalExtent e{};
       e.lo.fill(std::numeric_limits<std::int32_t>::max());
       e.hi.fill(std::numeric_limits<std::int32_t>::min());
-      if (item != TriangleTree::kNoItem) e = diagonal_extent(tris[item].p);
+      if (item != TriangleTree::kNoItem) e = diagonal_extent(tris[item].p());
       for (std::size_t d = 0; d < 4; ++d) {
         b.lo[d][s] = static_cast<std::int32_t>(e.lo[d]);
         b.hi[d][s] = static_cast<std::int32_t>(e.hi[d]);

@@ -70,19 +70,27 @@ struct SolidFinding {
 SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand,
                          const TriangleTree* tree = nullptr);
 
-/// A grid triangle prepared for the contact test: its corners, their welded
-/// ids (equal iff equal positions, within the triangles compared) and its
-/// normal (p1 - p0) x (p2 - p0) (grid_normal), computed once per triangle
-/// instead of once per pair.
+/// A grid triangle prepared for the contact test: where its corners are,
+/// their welded ids (equal iff equal positions, within the triangles
+/// compared) and its normal (p1 - p0) x (p2 - p0) (grid_normal), computed
+/// once per triangle instead of once per pair.
+/// The corners are referred to, not copied: the proof holds one entry per
+/// triangle of the operand it proves, and a copy (72 bytes) made the entry
+/// 112 bytes; with the operands proven side by side at 16 threads the copies
+/// were 64 MB of the 1.08M-triangle union's peak (docs/redesign.md, session
+/// 21). The caller keeps the corners alive (the proof: GridTriangles::corners).
 struct ContactTriangle {
-  std::array<IntPoint, 3> p;
+  const std::array<IntPoint, 3>* corners = nullptr;
   std::array<std::int64_t, 3> n;
   std::array<std::uint32_t, 3> id;
   /// Bit k: the star of corner k's vertex is certified embedded
   /// (vertex_stars.hpp), so triangles sharing that vertex never meet
   /// improperly. 0 (nothing certified) unless certify_embedded_stars set it.
   std::uint8_t embedded = 0;
+  const std::array<IntPoint, 3>& p() const { return *corners; }
 };
+static_assert(sizeof(ContactTriangle) <= 48, "ContactTriangle: the proof's per-triangle entry");
+/// The contact triangle of the corners `p`, which must outlive it.
 ContactTriangle contact_triangle(const std::array<IntPoint, 3>& p, const std::array<std::uint32_t, 3>& ids);
 
 /// A triangle's extent along the four diagonals (1,1,1), (1,1,-1), (1,-1,1),

@@ -35,7 +35,7 @@ i128 orient3d(const IntPoint& a, const IntPoint& b, const IntPoint& c, const Int
 /// orient3d(t[0], t[1], t[2], p) = n . (p - t[0]) with the stored normal n:
 /// the same value (n has components < 2^53, differences < 2^27, so each
 /// product < 2^80 and the sum < 2^82) for three multiplications instead of nine.
-i128 side(const ContactTriangle& t, const IntPoint& p) { return grid_side(t.p[0], t.n, p); }
+i128 side(const ContactTriangle& t, const IntPoint& p) { return grid_side(t.p()[0], t.n, p); }
 
 /// Three corners' sides of a plane all strictly positive or all strictly
 /// negative: the triangle lies beside the plane and cannot meet it.
@@ -164,7 +164,7 @@ bool wedges_meet(const IntPoint& v, const IntPoint& a1, const IntPoint& a2, cons
 }  // namespace
 
 ContactTriangle contact_triangle(const std::array<IntPoint, 3>& p, const std::array<std::uint32_t, 3>& ids) {
-  return {p, grid_normal(p[0], p[1], p[2]), ids, 0};
+  return {&p, grid_normal(p[0], p[1], p[2]), ids, 0};
 }
 
 bool triangles_meet_improperly(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b) {
@@ -189,7 +189,7 @@ bool beside_plane(const std::array<IntPoint, 3>& a, const std::array<std::int64_
 }
 
 bool triangles_meet_improperly(const ContactTriangle& ta, const ContactTriangle& tb) {
-  const std::array<IntPoint, 3>&a = ta.p, &b = tb.p;
+  const std::array<IntPoint, 3>&a = ta.p(), &b = tb.p();
   int shared = 0, ia = -1, ib = -1;  // a[ia] == b[ib] when exactly one vertex is shared
   bool a_shared[3] = {false, false, false}, b_shared[3] = {false, false, false};
   for (int i = 0; i < 3; ++i)

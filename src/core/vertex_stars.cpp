@@ -50,7 +50,7 @@ bool star_is_embedded(std::span<const ContactTriangle> tris, std::span<const std
     const std::uint32_t c = corners[i];
     const ContactTriangle& t = tris[c / 3];
     const int k = static_cast<int>(c % 3), k1 = k == 2 ? 0 : k + 1, k2 = k1 == 2 ? 0 : k1 + 1;
-    const IntPoint &v = t.p[k], &a = t.p[k1];
+    const IntPoint &v = t.p()[k], &a = t.p()[k1];
     start[i] = t.id[k1];
     spokes[i] = {t.id[k2], {a.x - v.x, a.y - v.y, a.z - v.z}, &t.n};
     for (int j = 0; j < 3; ++j) d[j] += t.n[j];

@@ -44,7 +44,8 @@ TEST(ContactSearch, CountEqualsAllPairsOnRandomSoups) {
   // Sizes around multiples of the leaf size and of powers of two, so that
   // leaves are partly filled and the tree has empty slots.
   for (const std::size_t n : {1u, 2u, 7u, 8u, 9u, 63u, 300u, 1500u}) {
-    const std::vector<ContactTriangle> tris = with_ids(scattered(n, 1000, 60, static_cast<unsigned>(n)));
+    const std::vector<Tri> corners = scattered(n, 1000, 60, static_cast<unsigned>(n));
+    const std::vector<ContactTriangle> tris = with_ids(corners);
     const std::size_t expected = all_pairs_count(tris);
     for (const int threads : {1, 2, 4}) {
       tbb::task_arena arena(threads);
@@ -76,7 +77,7 @@ TEST(ContactSearch, DiagonalExtentsOnlyDismissDisjointTriangles) {
   std::size_t dismissed = 0;
   for (std::size_t i = 0; i < ct.size(); ++i)
     for (std::size_t j = i + 1; j < ct.size(); ++j) {
-      if (!core::diagonally_apart(core::diagonal_extent(ct[i].p), core::diagonal_extent(ct[j].p))) continue;
+      if (!core::diagonally_apart(core::diagonal_extent(ct[i].p()), core::diagonal_extent(ct[j].p()))) continue;
       ++dismissed;
       EXPECT_FALSE(core::triangles_meet_improperly(ct[i], ct[j])) << i << ", " << j;
       for (const std::uint32_t a : ct[i].id)
@@ -85,7 +86,7 @@ TEST(ContactSearch, DiagonalExtentsOnlyDismissDisjointTriangles) {
   EXPECT_GT(dismissed, 0u);
   std::size_t sliver_pairs = 0;  // the 40 slivers: boxes overlap pairwise, diagonals apart
   for (std::size_t i = ct.size() - 40; i < ct.size(); ++i)
-    for (std::size_t j = i + 1; j < ct.size(); ++j) sliver_pairs += core::diagonally_apart(core::diagonal_extent(ct[i].p), core::diagonal_extent(ct[j].p));
+    for (std::size_t j = i + 1; j < ct.size(); ++j) sliver_pairs += core::diagonally_apart(core::diagonal_extent(ct[i].p()), core::diagonal_extent(ct[j].p()));
   EXPECT_EQ(sliver_pairs, 40u * 39u / 2u);
   EXPECT_EQ(core::find_contacts(ct, 1u << 30).pairs, all_pairs_count(ct));
 }
@@ -123,7 +124,8 @@ TEST(ContactSearch, ClosedSurfaceHasNoContacts) {
 }
 
 TEST(ContactSearch, StopsAtMaxPairs) {
-  const std::vector<ContactTriangle> tris = with_ids(scattered(1500, 1000, 60, 1500));
+  const std::vector<Tri> corners = scattered(1500, 1000, 60, 1500);
+  const std::vector<ContactTriangle> tris = with_ids(corners);
   ASSERT_GT(all_pairs_count(tris), 20u);
   EXPECT_EQ(core::find_contacts(tris, 20).pairs, 20u);
 }

@@ -12,7 +12,8 @@ namespace ember::test {
 
 using Tri = std::array<IntPoint, 3>;
 
-/// Contact triangles with ids equal iff positions equal (as the set-up's weld gives).
+/// Contact triangles with ids equal iff positions equal (as the set-up's weld
+/// gives). They refer to the corners in `tris`, which must outlive them.
 inline std::vector<core::ContactTriangle> with_ids(const std::vector<Tri>& tris) {
   std::map<std::tuple<std::int64_t, std::int64_t, std::int64_t>, std::uint32_t> ids;
   std::vector<core::ContactTriangle> out;
@@ -24,6 +25,7 @@ inline std::vector<core::ContactTriangle> with_ids(const std::vector<Tri>& tris)
   }
   return out;
 }
+std::vector<core::ContactTriangle> with_ids(std::vector<Tri>&&) = delete;  // would refer to a temporary
 
 /// Pairs that meet improperly, by testing every pair.
 inline std::size_t all_pairs_count(const std::vector<core::ContactTriangle>& tris) {

@@ -21,25 +21,27 @@ TEST(LeafDiagonals, MasksMatchDiagonallyApartPairByPair) {
       // Small ranges: extents that touch (equal projections) abound.
       std::uniform_int_distribution<std::int64_t> at(-range, range);
       std::vector<core::ContactTriangle> tris(n);
+      std::vector<std::array<IntPoint, 3>> corners(n);
       std::vector<core::Box32> boxes(n);
       for (std::size_t i = 0; i < n; ++i) {
-        for (IntPoint& p : tris[i].p) p = {at(rng), at(rng), at(rng)};
-        boxes[i] = core::box_of(tris[i].p);
+        for (IntPoint& p : corners[i]) p = {at(rng), at(rng), at(rng)};
+        tris[i].corners = &corners[i];
+        boxes[i] = core::box_of(tris[i].p());
       }
       const core::TriangleTree tree(boxes);
       const core::LeafDiagonals diagonals(tree, tris);
       for (std::size_t s = 0; s < n; ++s) {
-        const core::DiagonalExtent want = core::diagonal_extent(tris[tree.item(s)].p);
+        const core::DiagonalExtent want = core::diagonal_extent(tris[tree.item(s)].p());
         ASSERT_EQ(diagonals.extent(s).lo, want.lo);
         ASSERT_EQ(diagonals.extent(s).hi, want.hi);
       }
       for (std::size_t q = 0; q < n; ++q) {
-        const core::DiagonalExtent e = core::diagonal_extent(tris[q].p);
+        const core::DiagonalExtent e = core::diagonal_extent(tris[q].p());
         for (std::size_t leaf = tree.first_leaf(); leaf < tree.first_leaf() + (n + 7) / 8; ++leaf) {
           const auto [b, end] = tree.leaf_slots(leaf);
           unsigned want = 0;
           for (std::size_t s = b; s < end; ++s) {
-            const bool d = core::diagonally_apart(e, core::diagonal_extent(tris[tree.item(s)].p));
+            const bool d = core::diagonally_apart(e, core::diagonal_extent(tris[tree.item(s)].p()));
             apart += d;
             near += !d;
             want |= static_cast<unsigned>(d) << (s - b);

@@ -20,6 +20,7 @@ TEST(LeafVertexIds, MasksMatchSharedVertexCounts) {
     std::uniform_int_distribution<std::uint32_t> id(0, 9);
     std::uniform_int_distribution<std::int64_t> at(-100, 100);
     std::vector<core::ContactTriangle> tris(n);
+    std::vector<std::array<IntPoint, 3>> corners(n);
     std::vector<core::Box32> boxes(n);
     for (std::size_t i = 0; i < n; ++i) {
       const std::uint32_t a = id(rng);
@@ -27,8 +28,9 @@ TEST(LeafVertexIds, MasksMatchSharedVertexCounts) {
       while (b == a) b = id(rng);
       while (c == a || c == b) c = id(rng);
       tris[i].id = {a, b, c};
-      for (IntPoint& p : tris[i].p) p = {at(rng), at(rng), at(rng)};
-      boxes[i] = core::box_of(tris[i].p);
+      for (IntPoint& p : corners[i]) p = {at(rng), at(rng), at(rng)};
+      tris[i].corners = &corners[i];
+      boxes[i] = core::box_of(tris[i].p());
     }
     const core::TriangleTree tree(boxes);
     const core::LeafVertexIds ids(tree, tris);

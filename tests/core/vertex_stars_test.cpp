@@ -49,7 +49,8 @@ std::vector<core::ContactTriangle> certified(std::vector<core::ContactTriangle> 
 TEST(VertexStars, OrdinaryClosedMeshesAreCertifiedEverywhere) {
   for (const Mesh& m : {icosphere({0, 0, 0}, 1.0, 3), uv_sphere({0.1, 0, 0}, 1.0, 48, 20),
                         torus({0, 0, 0}, 1.0, 0.3, 32, 12), tessellated_box({0, 0, 0}, {1, 1, 1}, 3)}) {
-    const std::vector<core::ContactTriangle> tris = certified(with_ids(on_grid(m, 1 << 20)));
+    const std::vector<Tri> corners = on_grid(m, 1 << 20);
+    const std::vector<core::ContactTriangle> tris = certified(with_ids(corners));
     EXPECT_EQ(certified_corners(tris), 3 * tris.size());  // cube corners and sphere poles included
   }
 }
@@ -72,22 +73,23 @@ std::vector<Tri> fan(int spokes, double turn) {
 TEST(VertexStars, AFanWindingTwiceIsNotCertifiedAndItsOverlapIsFound) {
   // Six spokes 120 degrees apart: two turns. Triangles 0 and 3 cover the
   // same sector: coplanar, overlapping beyond v.
-  const std::vector<core::ContactTriangle> twice = certified(with_ids(fan(6, 120)));
+  const std::vector<Tri> fan6_120 = fan(6, 120), fan5_144 = fan(5, 144), fan6_60 = fan(6, 60), fan5_72 = fan(5, 72);
+  const std::vector<core::ContactTriangle> twice = certified(with_ids(fan6_120));
   EXPECT_EQ(twice[0].embedded & 1, 0);
   EXPECT_TRUE(core::triangles_meet_improperly(twice[0], twice[3]));
   EXPECT_EQ(core::find_contacts(twice, 1000).pairs, all_pairs_count(twice));
   EXPECT_GT(all_pairs_count(twice), 0u);
   // Five spokes 144 degrees apart: two turns, no spoke parallel to another.
-  const std::vector<core::ContactTriangle> five = certified(with_ids(fan(5, 144)));
+  const std::vector<core::ContactTriangle> five = certified(with_ids(fan5_144));
   EXPECT_EQ(five[0].embedded & 1, 0);
   EXPECT_EQ(core::find_contacts(five, 1000).pairs, all_pairs_count(five));
   EXPECT_GT(all_pairs_count(five), 0u);
   // The same fans winding once are certified at v (the only closed star
   // here), with a spoke at 180 degrees from the first one.
-  const std::vector<core::ContactTriangle> once = certified(with_ids(fan(6, 60)));
+  const std::vector<core::ContactTriangle> once = certified(with_ids(fan6_60));
   EXPECT_EQ(once[0].embedded & 1, 1);
   EXPECT_EQ(all_pairs_count(once), 0u);
-  EXPECT_EQ(certified(with_ids(fan(5, 72)))[0].embedded & 1, 1);
+  EXPECT_EQ(certified(with_ids(fan5_72))[0].embedded & 1, 1);
 }
 
 TEST(VertexStars, FoldedAndNonManifoldStarsAreNotCertified) {
@@ -138,7 +140,8 @@ TEST(VertexStars, CertificatesNeverHideAContact) {
   unsigned seed = 1;
   for (const Mesh& m : {icosphere({0, 0, 0}, 1.0, 2), torus({0, 0, 0}, 1.0, 0.35, 16, 8)}) {
     for (const std::int64_t jitter : {0, 20, 60, 150}) {
-      const std::vector<core::ContactTriangle> plain = with_ids(jittered(m, 400, jitter, seed++));
+      const std::vector<Tri> corners = jittered(m, 400, jitter, seed++);
+      const std::vector<core::ContactTriangle> plain = with_ids(corners);
       const std::size_t expected = all_pairs_count(plain);
       const std::vector<core::ContactTriangle> tris = certified(plain);
       EXPECT_EQ(all_pairs_count(tris), expected) << "jitter " << jitter;
