@@ -27,6 +27,7 @@
 
 #include "ember/boolean.hpp"
 #include "ember/io/mesh_io.hpp"
+#include "ember/process.hpp"
 #include "runner_common.hpp"
 
 namespace {
@@ -179,6 +180,10 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // As the ember CLI does (ember/process.hpp): without it, glibc's per-thread
+  // heaps keep what the workers free, and peak RSS grows with the thread
+  // count and the repeated runs (docs/benchmark.md, "Peak RSS").
+  ember::cap_malloc_arenas();
   try {
     std::string mode = argc > 1 ? argv[1] : "";
     if (mode == "prepare") return prepare(argc, argv);

@@ -19,6 +19,7 @@
 #include "ember/boolean.hpp"
 #include "ember/error.hpp"
 #include "ember/io/mesh_io.hpp"
+#include "ember/process.hpp"
 #include "ember/shapes.hpp"
 #include "cli/operands.hpp"
 #include "cli/progress.hpp"
@@ -146,6 +147,7 @@ int run_demo(const std::string& dir, int threads) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ember::cap_malloc_arenas();  // before any thread starts (ember/process.hpp)
   CLI::App app{"ember: exact mesh Booleans (EMBER). Formats by extension: .obj .stl .ply .off .3mf"};
   app.require_subcommand(1);
   BooleanArgs args;
