@@ -65,15 +65,17 @@ FrameBoxes::FrameBoxes(const SoupApprox& a) {
   for (double x : c) m = std::max(m, std::fabs(x));
   if (!std::isfinite(m)) return;
   const double pad = 0x1p-40 * m;
-  lo_.assign(n, {HUGE_VAL, HUGE_VAL, HUGE_VAL});
-  hi_.assign(n, {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
+  for (int k = 0; k < 3; ++k) {
+    lo_[k].assign(n, HUGE_VAL);
+    hi_[k].assign(n, -HUGE_VAL);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     for (const V3& p : a.of(i)) {
       const V3 d{p[0] - c[0], p[1] - c[1], p[2] - c[2]};
       for (int k = 0; k < 3; ++k) {
         const double r = frame[k][0] * d[0] + frame[k][1] * d[1] + frame[k][2] * d[2];
-        lo_[i][k] = std::min(lo_[i][k], r - pad);
-        hi_[i][k] = std::max(hi_[i][k], r + pad);
+        lo_[k][i] = std::min(lo_[k][i], r - pad);
+        hi_[k][i] = std::max(hi_[k][i], r + pad);
       }
     }
   }
@@ -88,16 +90,16 @@ constexpr int kMaxSpan = 64;    // cells a polygon may cover before it counts as
 std::array<int, 2> FrameBoxes::cell_range(std::size_t i, int axis) const {
   const std::vector<double>& cuts = cuts_[axis];
   // Cell c covers [cuts[c-1], cuts[c]] (closed: a box touching a cut is in both).
-  const auto first = std::lower_bound(cuts.begin(), cuts.end(), lo_[i][axis + 1]) - cuts.begin();
-  const auto last = std::upper_bound(cuts.begin(), cuts.end(), hi_[i][axis + 1]) - cuts.begin();
+  const auto first = std::lower_bound(cuts.begin(), cuts.end(), lo_[axis + 1][i]) - cuts.begin();
+  const auto last = std::upper_bound(cuts.begin(), cuts.end(), hi_[axis + 1][i]) - cuts.begin();
   return {static_cast<int>(first), static_cast<int>(last)};
 }
 
 void FrameBoxes::build_grid() {
-  const std::size_t n = lo_.size();
+  const std::size_t n = lo_[0].size();
   for (int axis = 0; axis < 2; ++axis) {
     std::vector<double> centre(n);
-    for (std::size_t i = 0; i < n; ++i) centre[i] = 0.5 * (lo_[i][axis + 1] + hi_[i][axis + 1]);
+    for (std::size_t i = 0; i < n; ++i) centre[i] = 0.5 * (lo_[axis + 1][i] + hi_[axis + 1][i]);
     std::sort(centre.begin(), centre.end());
     std::vector<double>& cuts = cuts_[axis];
     for (int c = 1; c < kCells; ++c) cuts.push_back(centre[n * static_cast<std::size_t>(c) / kCells]);
@@ -118,6 +120,11 @@ void FrameBoxes::build_grid() {
     for (int a = r0[0]; a <= r0[1]; ++a)
       for (int b = r1[0]; b <= r1[1]; ++b) ++cell_begin_[static_cast<std::size_t>(a) * columns + b + 1];
   }
+  for (int k = 0; k < 3; ++k)
+    for (const std::uint32_t j : wide_) {
+      wide_boxes_.lo[k].push_back(lo_[k][j]);
+      wide_boxes_.hi[k].push_back(hi_[k][j]);
+    }
   for (std::size_t c = 0; c < cells; ++c) cell_begin_[c + 1] += cell_begin_[c];
   members_.resize(cell_begin_.back());
   std::vector<std::uint32_t> fill(cell_begin_.begin(), cell_begin_.end() - 1);
@@ -131,8 +138,8 @@ bool FrameBoxes::overlapping(std::size_t i, Query& query, std::vector<std::uint3
   const auto r0 = cell_range(i, 0), r1 = cell_range(i, 1);
   if ((r0[1] - r0[0] + 1) * (r1[1] - r1[0] + 1) > kMaxSpan) return false;
   std::vector<std::uint32_t>& seen = query.seen;
-  if (seen.size() != lo_.size() || ++query.stamp == 0) {  // new, or wrapped: forget every old stamp
-    seen.assign(lo_.size(), 0);
+  if (seen.size() != lo_[0].size() || ++query.stamp == 0) {  // new, or wrapped: forget every old stamp
+    seen.assign(lo_[0].size(), 0);
     query.stamp = 1;
   }
   out.clear();
@@ -147,9 +154,37 @@ bool FrameBoxes::overlapping(std::size_t i, Query& query, std::vector<std::uint3
       const std::size_t c = static_cast<std::size_t>(a) * columns + b;
       for (std::uint32_t k = cell_begin_[c]; k < cell_begin_[c + 1]; ++k) consider(members_[k]);
     }
-  for (const std::uint32_t j : wide_) consider(j);
+  // The wide polygons are in no cell (no duplicates): one branch-free pass
+  // over their boxes, stored together (in the sliver pile they were a third
+  // of the leaf, tested one by one for every query).
+  std::size_t count = out.size();
+  out.resize(count + wide_.size());
+  const Axes& w = wide_boxes_;
+  for (std::size_t k = 0; k < wide_.size(); ++k) {
+    const bool meet = (w.lo[0][k] <= hi_[0][i]) & (lo_[0][i] <= w.hi[0][k]) & (w.lo[1][k] <= hi_[1][i]) &
+                      (lo_[1][i] <= w.hi[1][k]) & (w.lo[2][k] <= hi_[2][i]) & (lo_[2][i] <= w.hi[2][k]);
+    out[count] = wide_[k];
+    count += meet;  // i is not wide (it would have been declined above)
+  }
+  out.resize(count);
   std::sort(out.begin(), out.end());
   return true;
+}
+
+void FrameBoxes::scan(std::size_t i, std::vector<std::uint32_t>& out) const {
+  const std::size_t n = lo_[0].size();
+  out.resize(n);
+  const double l0 = lo_[0][i], l1 = lo_[1][i], l2 = lo_[2][i], h0 = hi_[0][i], h1 = hi_[1][i], h2 = hi_[2][i];
+  const double *a0 = lo_[0].data(), *a1 = lo_[1].data(), *a2 = lo_[2].data();
+  const double *b0 = hi_[0].data(), *b1 = hi_[1].data(), *b2 = hi_[2].data();
+  std::size_t count = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    // Not apart (see apart()), written with & so that no branch depends on the boxes.
+    const bool meet = (a0[j] <= h0) & (l0 <= b0[j]) & (a1[j] <= h1) & (l1 <= b1[j]) & (a2[j] <= h2) & (l2 <= b2[j]);
+    out[count] = static_cast<std::uint32_t>(j);
+    count += meet & (j != i);
+  }
+  out.resize(count);
 }
 
 }  // namespace ember::core

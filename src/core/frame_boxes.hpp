@@ -30,7 +30,7 @@ class FrameBoxes {
   /// their vertices.
   explicit FrameBoxes(const SoupApprox& a);
 
-  bool empty() const { return lo_.empty(); }
+  bool empty() const { return lo_[0].empty(); }
   /// A caller's memory of which polygons its current query has found: one per
   /// thread, so that the threads of a pile leaf query one FrameBoxes together.
   struct Query {
@@ -41,17 +41,29 @@ class FrameBoxes {
   /// grid across the principal axis; false (out untouched) when i's box spans
   /// too much of the grid, and the caller should test every polygon.
   bool overlapping(std::size_t i, Query& query, std::vector<std::uint32_t>& out) const;
+  /// The same answer as overlapping() by testing every polygon, for the
+  /// polygons overlapping() declines: one branch-free pass over the boxes
+  /// stored axis by axis. In the sliver pile 30% of the pile leaves' gathers
+  /// were such scans, 3,500 polygons each on average, and testing each
+  /// polygon in gather (its soup entry, its world box, then its frame box)
+  /// was most of the solve.
+  void scan(std::size_t i, std::vector<std::uint32_t>& out) const;
   /// True when polygons i and j cannot share a point.
   bool apart(std::size_t i, std::size_t j) const {
-    const std::array<double, 3>&li = lo_[i], &hi = hi_[i], &lj = lo_[j], &hj = hi_[j];
-    return hi[0] < lj[0] || hj[0] < li[0] || hi[1] < lj[1] || hj[1] < li[1] || hi[2] < lj[2] || hj[2] < li[2];
+    return lo_[0][j] > hi_[0][i] || lo_[0][i] > hi_[0][j] || lo_[1][j] > hi_[1][i] || lo_[1][i] > hi_[1][j] ||
+           lo_[2][j] > hi_[2][i] || lo_[2][i] > hi_[2][j];
   }
 
  private:
   void build_grid();
   std::array<int, 2> cell_range(std::size_t i, int axis) const;
 
-  std::vector<std::array<double, 3>> lo_, hi_;
+  /// Per frame axis, every polygon's box (lo_[k][i], hi_[k][i]).
+  std::array<std::vector<double>, 3> lo_, hi_;
+  struct Axes {
+    std::array<std::vector<double>, 3> lo, hi;
+  };
+  Axes wide_boxes_;  ///< the boxes of wide_[k], per axis
   /// The grid across the principal axis: cell boundaries at quantiles of the
   /// polygons' centres on frame axes 1 and 2 (dense where the polygons are),
   /// members per cell in CSR form; polygons spanning many cells are `wide_`.

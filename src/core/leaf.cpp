@@ -109,9 +109,6 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
     // solid operand's own winding numbers at t are known (0 / 1). (Checked
     // before the boxes: it is cheaper and skips half of a two-solid leaf.)
     if ((o.operand == t.operand && t_solid) || o.id == t.id || !boxes_overlap(t, o)) return;
-    // A polygon that cannot touch t changes nothing just beside t and cuts
-    // nothing: leaving it out only narrows the free operands to the exact ones.
-    if (sc.frame && sc.frame->apart(t_index, i)) return;
     bool front = false, back = false;
     // Coplanar first: one plane comparison instead of exact zero tests of
     // every vertex (stacks are full of them).
@@ -130,9 +127,14 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
     if (front) mark(sc.free_front, sc.n_front, o.operand);
     if (back) mark(sc.free_back, sc.n_back, o.operand);
   };
-  // In a pile leaf the frame grid names the few polygons that can touch t
-  // (in ascending order, as the full scan would visit them).
-  if (sc.frame && sc.frame->overlapping(t_index, sc.frame_query, sc.candidates)) {
+  // In a pile leaf the frame grid names the few polygons that can touch t, or
+  // for a polygon wide across the grid a scan of all frame boxes does (either
+  // in ascending order, as the full scan would visit them). The others'
+  // frame boxes are apart from t's: they cannot touch t, so they change
+  // nothing just beside t and cut nothing, and leaving them out only narrows
+  // the free operands to the exact ones.
+  if (sc.frame) {
+    if (!sc.frame->overlapping(t_index, sc.frame_query, sc.candidates)) sc.frame->scan(t_index, sc.candidates);
     for (const std::uint32_t i : sc.candidates) consider(i);
     return;
   }

@@ -115,5 +115,38 @@ TEST(FrameBoxes, GridReturnsExactlyTheOverlappingBoxes) {
   EXPECT_LT(total, answered * b.tris.size() / 10);
 }
 
+TEST(FrameBoxes, ScanReturnsExactlyTheOverlappingBoxes) {
+  // The strip pile plus triangles across it (wide in the frame's grid, which
+  // declines them), at small and at full-range coordinates.
+  for (const std::int64_t origin : {std::int64_t{1000}, kCoordLimit - 2000000}) {
+    std::vector<Tri> tris = strip_pile(origin, 200);
+    for (int k = 0; k < 40; ++k) {
+      const std::int64_t at = origin + 20000 * k;
+      tris.push_back({IntPoint{at, origin, origin}, IntPoint{at + 5, origin + 900, origin + 3}, IntPoint{at, origin + 450, origin + 800}});
+    }
+    const Built b = build(tris);
+    const FrameBoxes frame(b.approx);
+    FrameBoxes::Query query;
+    std::vector<std::uint32_t> got, grid;
+    std::size_t declined = 0, found = 0;
+    for (std::size_t i = 0; i < b.tris.size(); ++i) {
+      frame.scan(i, got);
+      std::vector<std::uint32_t> want;
+      for (std::uint32_t j = 0; j < b.tris.size(); ++j)
+        if (j != i && !frame.apart(i, j)) want.push_back(j);
+      ASSERT_EQ(got, want) << "polygon " << i;
+      found += got.size();
+      if (frame.overlapping(i, query, grid)) {
+        EXPECT_EQ(grid, got) << "polygon " << i;
+      } else {
+        ++declined;
+      }
+    }
+    EXPECT_GT(declined, 0u);  // the cross triangles are scanned, not looked up
+    EXPECT_GT(found, b.tris.size());
+    EXPECT_LT(found, b.tris.size() * (b.tris.size() - 1));  // some boxes are apart: the scan filters
+  }
+}
+
 }  // namespace
 }  // namespace ember::core
