@@ -16,18 +16,33 @@
 // 402 ms against 326 ms); two cost no measurable time.
 #include <cstdlib>
 
-#if defined(__GLIBC__)
+// AddressSanitizer replaces malloc, and its mallopt sets nothing.
+#if defined(__SANITIZE_ADDRESS__)
+#define EMBER_GLIBC_MALLOC 0
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define EMBER_GLIBC_MALLOC 0
+#endif
+#endif
+#if !defined(EMBER_GLIBC_MALLOC) && defined(__GLIBC__)
 #include <malloc.h>
+#if defined(M_ARENA_MAX)
+#define EMBER_GLIBC_MALLOC 1
+#endif
+#endif
+#if !defined(EMBER_GLIBC_MALLOC)
+#define EMBER_GLIBC_MALLOC 0
 #endif
 
 namespace ember {
 
 /// Caps glibc's malloc arenas at `arenas` for this process, unless the
 /// environment already chooses (MALLOC_ARENA_MAX, GLIBC_TUNABLES): call it
-/// before starting threads. Returns whether the cap was set; false on other
-/// C libraries, which are left as they are.
+/// before starting threads. Returns whether the cap was set; false with
+/// other allocators (other C libraries, AddressSanitizer's), which are left
+/// as they are.
 inline bool cap_malloc_arenas(int arenas = 2) {
-#if defined(__GLIBC__) && defined(M_ARENA_MAX)
+#if EMBER_GLIBC_MALLOC
   if (std::getenv("MALLOC_ARENA_MAX") || std::getenv("GLIBC_TUNABLES")) return false;
   return mallopt(M_ARENA_MAX, arenas) == 1;
 #else

@@ -1,5 +1,5 @@
-// ember::cap_malloc_arenas (ember/process.hpp): applies on glibc unless the
-// environment already chooses, and leaves other C libraries alone.
+// ember::cap_malloc_arenas (ember/process.hpp): applies to glibc's malloc
+// unless the environment already chooses, and leaves other allocators alone.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -22,11 +22,11 @@ TEST(Process, CapMallocArenasDefersToTheEnvironment) {
   }
 }
 
-TEST(Process, CapMallocArenasAppliesOnGlibcOnly) {
+TEST(Process, CapMallocArenasAppliesToGlibcMallocOnly) {
   if (std::getenv("MALLOC_ARENA_MAX") || std::getenv("GLIBC_TUNABLES")) GTEST_SKIP() << "the environment chooses";
-#if defined(__GLIBC__)
+#if EMBER_GLIBC_MALLOC
   EXPECT_TRUE(cap_malloc_arenas(2));
-#else
+#else  // another C library, or AddressSanitizer's allocator
   EXPECT_FALSE(cap_malloc_arenas(2));
 #endif
 }
