@@ -182,7 +182,7 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   // As the ember CLI does (ember/process.hpp): without it, glibc's per-thread
   // heaps keep what the workers free, and peak RSS grows with the thread
-  // count and the repeated runs (docs/benchmark.md, "Peak RSS").
+  // count and the repeated runs (docs/benchmark.md, the `_rss_mib` column).
   ember::cap_malloc_arenas();
   try {
     std::string mode = argc > 1 ? argv[1] : "";

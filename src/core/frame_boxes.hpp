@@ -39,7 +39,7 @@ class FrameBoxes {
   };
   /// The polygons (ascending, without i) whose boxes overlap polygon i's, from a
   /// grid across the principal axis; false (out untouched) when i's box spans
-  /// too much of the grid, and the caller should test every polygon.
+  /// too much of the grid: the caller then calls scan().
   bool overlapping(std::size_t i, Query& query, std::vector<std::uint32_t>& out) const;
   /// The same answer as overlapping() by testing every polygon, for the
   /// polygons overlapping() declines: one branch-free pass over the boxes

@@ -76,9 +76,9 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
 /// once per triangle instead of once per pair.
 /// The corners are referred to, not copied: the proof holds one entry per
 /// triangle of the operand it proves, and a copy (72 bytes) made the entry
-/// 112 bytes; with the operands proven side by side at 16 threads the copies
-/// were 64 MB of the 1.08M-triangle union's peak (docs/redesign.md, session
-/// 21). The caller keeps the corners alive (the proof: GridTriangles::corners).
+/// 112 bytes: 61 MB per operand of the 1.08M-triangle union (26 MB now),
+/// and at 16 threads both operands are proven at once (docs/redesign.md,
+/// session 21). The caller keeps the corners alive (the proof: GridTriangles::corners).
 struct ContactTriangle {
   const std::array<IntPoint, 3>* corners = nullptr;
   std::array<std::int64_t, 3> n;

@@ -116,8 +116,11 @@ TEST(FrameBoxes, GridReturnsExactlyTheOverlappingBoxes) {
 }
 
 TEST(FrameBoxes, ScanReturnsExactlyTheOverlappingBoxes) {
-  // The strip pile plus triangles across it (wide in the frame's grid, which
-  // declines them), at small and at full-range coordinates.
+  // The strip pile plus 40 triangles spread along x: they swing the leaf's
+  // principal direction, so here the strips come out wide (declined by the
+  // grid, answered by scan) and the grid's wide pass is checked against
+  // them; at small and at full-range coordinates. (A pile that the grid
+  // separates is GridReturnsExactlyTheOverlappingBoxes's.)
   for (const std::int64_t origin : {std::int64_t{1000}, kCoordLimit - 2000000}) {
     std::vector<Tri> tris = strip_pile(origin, 200);
     for (int k = 0; k < 40; ++k) {
@@ -142,7 +145,7 @@ TEST(FrameBoxes, ScanReturnsExactlyTheOverlappingBoxes) {
         ++declined;
       }
     }
-    EXPECT_GT(declined, 0u);  // the cross triangles are scanned, not looked up
+    EXPECT_GT(declined, 0u);  // some polygons are scanned, not looked up
     EXPECT_GT(found, b.tris.size());
     EXPECT_LT(found, b.tris.size() * (b.tris.size() - 1));  // some boxes are apart: the scan filters
   }
