@@ -154,37 +154,18 @@ bool FrameBoxes::overlapping(std::size_t i, Query& query, std::vector<std::uint3
       const std::size_t c = static_cast<std::size_t>(a) * columns + b;
       for (std::uint32_t k = cell_begin_[c]; k < cell_begin_[c + 1]; ++k) consider(members_[k]);
     }
-  // The wide polygons are in no cell (no duplicates): one branch-free pass
-  // over their boxes, stored together (in the sliver pile they were a third
-  // of the leaf, tested one by one for every query).
-  std::size_t count = out.size();
-  out.resize(count + wide_.size());
-  const Axes& w = wide_boxes_;
-  for (std::size_t k = 0; k < wide_.size(); ++k) {
-    const bool meet = (w.lo[0][k] <= hi_[0][i]) & (lo_[0][i] <= w.hi[0][k]) & (w.lo[1][k] <= hi_[1][i]) &
-                      (lo_[1][i] <= w.hi[1][k]) & (w.lo[2][k] <= hi_[2][i]) & (lo_[2][i] <= w.hi[2][k]);
-    out[count] = wide_[k];
-    count += meet;  // i is not wide (it would have been declined above)
-  }
-  out.resize(count);
+  // The wide polygons are in no cell (no duplicates), and i is not wide (it
+  // would have been declined above): one branch-free pass over their boxes,
+  // stored together (in the sliver pile they were a third of the leaf,
+  // tested one by one for every query).
+  append_meeting(wide_boxes_.lo, wide_boxes_.hi, i, wide_.size(), [&](std::size_t k) { return wide_[k]; }, out);
   std::sort(out.begin(), out.end());
   return true;
 }
 
 void FrameBoxes::scan(std::size_t i, std::vector<std::uint32_t>& out) const {
-  const std::size_t n = lo_[0].size();
-  out.resize(n);
-  const double l0 = lo_[0][i], l1 = lo_[1][i], l2 = lo_[2][i], h0 = hi_[0][i], h1 = hi_[1][i], h2 = hi_[2][i];
-  const double *a0 = lo_[0].data(), *a1 = lo_[1].data(), *a2 = lo_[2].data();
-  const double *b0 = hi_[0].data(), *b1 = hi_[1].data(), *b2 = hi_[2].data();
-  std::size_t count = 0;
-  for (std::size_t j = 0; j < n; ++j) {
-    // Not apart (see apart()), written with & so that no branch depends on the boxes.
-    const bool meet = (a0[j] <= h0) & (l0 <= b0[j]) & (a1[j] <= h1) & (l1 <= b1[j]) & (a2[j] <= h2) & (l2 <= b2[j]);
-    out[count] = static_cast<std::uint32_t>(j);
-    count += meet & (j != i);
-  }
-  out.resize(count);
+  out.clear();
+  append_meeting(lo_, hi_, i, i, [](std::size_t j) { return static_cast<std::uint32_t>(j); }, out);
 }
 
 }  // namespace ember::core

@@ -57,11 +57,31 @@ class FrameBoxes {
  private:
   void build_grid();
   std::array<int, 2> cell_range(std::size_t i, int axis) const;
+  using AxisArrays = std::array<std::vector<double>, 3>;
+  /// Appends id(k) for every box k of (lo, hi) but `skip` that meets polygon
+  /// i's (not apart, see apart()), in order of k: one pass, written with &
+  /// so that no branch depends on the boxes.
+  template <typename Id>
+  void append_meeting(const AxisArrays& lo, const AxisArrays& hi, std::size_t i, std::size_t skip, Id id,
+                      std::vector<std::uint32_t>& out) const {
+    const std::size_t n = lo[0].size();
+    std::size_t count = out.size();
+    out.resize(count + n);
+    const double l0 = lo_[0][i], l1 = lo_[1][i], l2 = lo_[2][i], h0 = hi_[0][i], h1 = hi_[1][i], h2 = hi_[2][i];
+    const double *a0 = lo[0].data(), *a1 = lo[1].data(), *a2 = lo[2].data();
+    const double *b0 = hi[0].data(), *b1 = hi[1].data(), *b2 = hi[2].data();
+    for (std::size_t k = 0; k < n; ++k) {
+      const bool meet = (a0[k] <= h0) & (l0 <= b0[k]) & (a1[k] <= h1) & (l1 <= b1[k]) & (a2[k] <= h2) & (l2 <= b2[k]);
+      out[count] = id(k);
+      count += meet & (k != skip);
+    }
+    out.resize(count);
+  }
 
   /// Per frame axis, every polygon's box (lo_[k][i], hi_[k][i]).
-  std::array<std::vector<double>, 3> lo_, hi_;
+  AxisArrays lo_, hi_;
   struct Axes {
-    std::array<std::vector<double>, 3> lo, hi;
+    AxisArrays lo, hi;
   };
   Axes wide_boxes_;  ///< the boxes of wide_[k], per axis
   /// The grid across the principal axis: cell boundaries at quantiles of the
