@@ -71,7 +71,9 @@ class FrameBoxes {
     const double *a0 = lo[0].data(), *a1 = lo[1].data(), *a2 = lo[2].data();
     const double *b0 = hi[0].data(), *b1 = hi[1].data(), *b2 = hi[2].data();
     for (std::size_t k = 0; k < n; ++k) {
-      const bool meet = (a0[k] <= h0) & (l0 <= b0[k]) & (a1[k] <= h1) & (l1 <= b1[k]) & (a2[k] <= h2) & (l2 <= b2[k]);
+      // Written as "not apart" (apart() verbatim, negated), so that a NaN
+      // bound keeps a pair, as apart() does, rather than dropping it.
+      const bool meet = !(a0[k] > h0) & !(l0 > b0[k]) & !(a1[k] > h1) & !(l1 > b1[k]) & !(a2[k] > h2) & !(l2 > b2[k]);
       out[count] = id(k);
       count += meet & (k != skip);
     }

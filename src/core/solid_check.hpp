@@ -92,6 +92,8 @@ struct ContactTriangle {
 static_assert(sizeof(ContactTriangle) <= 48, "ContactTriangle: the proof's per-triangle entry");
 /// The contact triangle of the corners `p`, which must outlive it.
 ContactTriangle contact_triangle(const std::array<IntPoint, 3>& p, const std::array<std::uint32_t, 3>& ids);
+/// The triangle points at `p`: a temporary would dangle.
+ContactTriangle contact_triangle(std::array<IntPoint, 3>&& p, const std::array<std::uint32_t, 3>& ids) = delete;
 
 /// A triangle's extent along the four diagonals (1,1,1), (1,1,-1), (1,-1,1),
 /// (-1,1,1): lowest projections, then highest. With the box it bounds the

@@ -3,6 +3,7 @@
 // grid must return exactly the polygons whose frame boxes overlap.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <random>
 #include <vector>
@@ -127,11 +128,18 @@ TEST(FrameBoxes, ScanReturnsExactlyTheOverlappingBoxes) {
       const std::int64_t at = origin + 20000 * k;
       tris.push_back({IntPoint{at, origin, origin}, IntPoint{at + 5, origin + 900, origin + 3}, IntPoint{at, origin + 450, origin + 800}});
     }
+    // And 40 small triangles astride the pile, spread along it: their boxes
+    // meet strips' boxes, so the scan must find pairs across the two kinds.
+    const std::size_t first_astride = tris.size();
+    for (int k = 1; k <= 40; ++k) {
+      const IntPoint c{origin + 400000 * k / 41, origin - 800000 * k / 41, origin + 80000 * k / 41};
+      tris.push_back({IntPoint{c.x - 50, c.y, c.z - 40}, IntPoint{c.x + 900, c.y + 3, c.z}, IntPoint{c.x, c.y + 5, c.z + 40}});
+    }
     const Built b = build(tris);
     const FrameBoxes frame(b.approx);
     FrameBoxes::Query query;
     std::vector<std::uint32_t> got, grid;
-    std::size_t declined = 0, found = 0;
+    std::size_t declined = 0, found = 0, astride_meets_pile = 0;
     for (std::size_t i = 0; i < b.tris.size(); ++i) {
       frame.scan(i, got);
       std::vector<std::uint32_t> want;
@@ -139,6 +147,7 @@ TEST(FrameBoxes, ScanReturnsExactlyTheOverlappingBoxes) {
         if (j != i && !frame.apart(i, j)) want.push_back(j);
       ASSERT_EQ(got, want) << "polygon " << i;
       found += got.size();
+      if (i >= first_astride) astride_meets_pile += std::count_if(got.begin(), got.end(), [](std::uint32_t j) { return j < 400; });
       if (frame.overlapping(i, query, grid)) {
         EXPECT_EQ(grid, got) << "polygon " << i;
       } else {
@@ -148,6 +157,7 @@ TEST(FrameBoxes, ScanReturnsExactlyTheOverlappingBoxes) {
     EXPECT_GT(declined, 0u);  // some polygons are scanned, not looked up
     EXPECT_GT(found, b.tris.size());
     EXPECT_LT(found, b.tris.size() * (b.tris.size() - 1));  // some boxes are apart: the scan filters
+    EXPECT_GE(astride_meets_pile, 40u);                     // every astride triangle meets a strip's box
   }
 }
 
