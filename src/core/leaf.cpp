@@ -537,7 +537,7 @@ void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<Outpu
   const LeafIndex index = index_leaf(pb.soup);
   const std::size_t size = pb.soup.size();
   // A pile leaf (thousands of polygons that no split separates: the sliver
-  // pile's take 0.1-3.6 s each) is shared by the threads in fixed blocks of
+  // pile has 14, of 60,259 polygons in all) is shared by the threads in fixed blocks of
   // polygons, so the pieces and their order are the same at any thread count.
   // Each block hands winding numbers across input edges only among its own
   // polygons (edge_windings.hpp): the values are exact either way, but each

@@ -308,6 +308,12 @@ bool indicator_constant(const Subproblem& pb, const SolveContext& ctx) {
   return indicator_constant(pb, ctx, summarize(pb.soup, ctx.operands).present);
 }
 
+bool split_pays(std::size_t polygons, std::size_t straddling) {
+  using u128 = unsigned __int128;  // exact for s <= n < 2^63: (n + s)^2 < 2^128
+  const u128 n = polygons, both = n + straddling;
+  return both * both < 2 * n * n;
+}
+
 namespace {
 
 /// Output chunks in deterministic order: each leaf (or single-solid box)
@@ -332,13 +338,13 @@ void solve_into(Subproblem&& pb, const SolveContext& ctx, OutputChunks& chunks) 
   std::int64_t position = 0;
   int axis = pb.soup.size() > ctx.leaf_size ? choose_split(pb, summary, position) : -1;
   if (axis >= 0) {
-    // A split that leaves most polygons in both children (a pile that no
+    // A split that leaves many polygons in both children (a pile that no
     // plane separates) multiplies pieces without progress: solve the pile as
-    // one leaf instead.
+    // one leaf instead (split_pays).
     std::size_t straddling = 0;
     for (const SoupPolygon& p : pb.soup)
       straddling += p.lo[axis] < static_cast<double>(position) && p.hi[axis] > static_cast<double>(position);
-    if (4 * straddling > 3 * pb.soup.size()) axis = -1;
+    if (!split_pays(pb.soup.size(), straddling)) axis = -1;
   }
   if (axis < 0) {
     for (SoupPolygon& p : pb.soup) materialize(p);  // a leaf works on whole plane-based polygons

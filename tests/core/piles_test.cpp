@@ -5,10 +5,27 @@
 
 #include <optional>
 
+#include "core/solve.hpp"
 #include "core_test_util.hpp"
 
 namespace ember::test {
 namespace {
+
+/// The split rule: a split pays while (n + s)^2 < 2 n^2, s < 0.414 n.
+TEST(Piles, SplitPaysWhileFewerThanSqrt2Minus1OfThePolygonsStraddle) {
+  EXPECT_TRUE(core::split_pays(1000, 0));
+  EXPECT_TRUE(core::split_pays(1000, 414));   // 1414^2 = 1,999,396 < 2,000,000
+  EXPECT_FALSE(core::split_pays(1000, 415));  // 1415^2 = 2,002,225
+  EXPECT_FALSE(core::split_pays(1000, 1000));
+  EXPECT_TRUE(core::split_pays(70, 28));   // 98^2 = 9,604 < 9,800
+  EXPECT_FALSE(core::split_pays(70, 29));  // 99^2 = 9,801
+  // Sizes whose squares overflow 64 bits are compared exactly too.
+  constexpr std::size_t kHuge = std::size_t{1} << 40;
+  EXPECT_TRUE(core::split_pays(kHuge, kHuge / 1000 * 414));
+  EXPECT_FALSE(core::split_pays(kHuge, kHuge / 1000 * 415));
+  // 3/4 straddling (the old rule's limit) no longer splits.
+  EXPECT_FALSE(core::split_pays(4000, 2999));
+}
 
 /// The union of unit cubes shifted by 1/128 along x (a dyadic step, so the
 /// volume is exact): stacks of up to 128 coplanar faces in every y/z plane.
@@ -30,10 +47,10 @@ TEST(Piles, ShiftedCubeUnionIsOneBox) {
   }
 }
 
-/// The general path (no solid knowledge) on the same stack: its pile leaves
-/// (here 1036-1364 polygons that no split separates, three blocks each) are
-/// shared by the threads in fixed blocks (leaf.cpp), so the result is the same
-/// at every thread count.
+/// The general path (no solid knowledge) on the same stack: its pile leaf
+/// (here all 2,400 polygons: every split leaves most of them in both
+/// children, see split_pays) is shared by the threads in fixed blocks of 512
+/// (leaf.cpp), so the result is the same at every thread count.
 TEST(Piles, GeneralPathPileIsTheSameAtEveryThreadCount) {
   constexpr int kCubes = 200;
   constexpr double kStep = 1.0 / 128;
