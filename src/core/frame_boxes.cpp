@@ -2,6 +2,7 @@
 #include "core/frame_boxes.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace ember::core {
@@ -122,8 +123,8 @@ void FrameBoxes::build_grid() {
   }
   for (int k = 0; k < 3; ++k)
     for (const std::uint32_t j : wide_) {
-      wide_boxes_.lo[k].push_back(lo_[k][j]);
-      wide_boxes_.hi[k].push_back(hi_[k][j]);
+      wide_lo_[k].push_back(lo_[k][j]);
+      wide_hi_[k].push_back(hi_[k][j]);
     }
   for (std::size_t c = 0; c < cells; ++c) cell_begin_[c + 1] += cell_begin_[c];
   members_.resize(cell_begin_.back());
@@ -137,29 +138,33 @@ void FrameBoxes::build_grid() {
 bool FrameBoxes::overlapping(std::size_t i, Query& query, std::vector<std::uint32_t>& out) const {
   const auto r0 = cell_range(i, 0), r1 = cell_range(i, 1);
   if ((r0[1] - r0[0] + 1) * (r1[1] - r1[0] + 1) > kMaxSpan) return false;
-  std::vector<std::uint32_t>& seen = query.seen;
-  if (seen.size() != lo_[0].size() || ++query.stamp == 0) {  // new, or wrapped: forget every old stamp
-    seen.assign(lo_[0].size(), 0);
-    query.stamp = 1;
-  }
-  out.clear();
-  const auto consider = [&](std::uint32_t j) {
-    if (seen[j] == query.stamp || j == i) return;
-    seen[j] = query.stamp;
-    if (!apart(i, j)) out.push_back(j);
-  };
+  const std::size_t words = (lo_[0].size() + 63) / 64;
+  if (query.marks.size() != words) query.marks.assign(words, 0);
+  std::uint64_t* const marks = query.marks.data();
+  const auto mark = [marks](std::uint32_t j, std::uint64_t bit) { marks[j >> 6] |= bit << (j & 63); };
   const auto columns = static_cast<std::size_t>(cuts_[1].size() + 1);
   for (int a = r0[0]; a <= r0[1]; ++a)
     for (int b = r1[0]; b <= r1[1]; ++b) {
       const std::size_t c = static_cast<std::size_t>(a) * columns + b;
-      for (std::uint32_t k = cell_begin_[c]; k < cell_begin_[c + 1]; ++k) consider(members_[k]);
+      for (std::uint32_t k = cell_begin_[c]; k < cell_begin_[c + 1]; ++k) mark(members_[k], 1);
     }
-  // The wide polygons are in no cell (no duplicates), and i is not wide (it
-  // would have been declined above): one branch-free pass over their boxes,
-  // stored together (in the sliver pile they were a third of the leaf,
-  // tested one by one for every query).
-  append_meeting(wide_boxes_.lo, wide_boxes_.hi, i, wide_.size(), [&](std::size_t k) { return wide_[k]; }, out);
-  std::sort(out.begin(), out.end());
+  // The wide polygons are in no cell, and i is not wide (it would have been
+  // declined above): one branch-free pass over their boxes, stored together
+  // (in the sliver pile they were a third of the leaf), marks those that
+  // meet i's.
+  out.clear();
+  append_meeting(wide_lo_, wide_hi_, i, wide_.size(), [&](std::size_t k) { return wide_[k]; }, out);
+  for (const std::uint32_t j : out) mark(j, 1);
+  // Read back in ascending order (the order a full scan finds them in),
+  // clearing every word; the wide ones that meet are tested again (few).
+  out.clear();
+  for (std::size_t w = 0; w < words; ++w) {
+    for (std::uint64_t bits = marks[w]; bits != 0; bits &= bits - 1) {
+      const auto j = static_cast<std::uint32_t>(64 * w + static_cast<std::size_t>(std::countr_zero(bits)));
+      if (j != i && !apart(i, j)) out.push_back(j);
+    }
+    marks[w] = 0;
+  }
   return true;
 }
 
