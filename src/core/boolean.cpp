@@ -264,7 +264,8 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
         std::atomic<bool> disproved{false};
         const auto prove = [&] {
           tbb::parallel_for(std::size_t{0}, unproven.size(), [&](std::size_t k) {
-            findings[k] = core::check_solid(root, grid, unproven[k], trees ? &trees->tree[unproven[k]] : nullptr);
+            findings[k] =
+                core::check_solid(root, grid, unproven[k], trees ? &trees->tree[unproven[k]] : nullptr, &disproved);
             if (findings[k].verdict != core::SolidVerdict::Solid) disproved = true;
           });
           proved = std::chrono::steady_clock::now();

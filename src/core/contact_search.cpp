@@ -24,8 +24,9 @@ namespace {
 
 class Search {
  public:
-  Search(std::span<const ContactTriangle> tris, std::size_t max_pairs, const TriangleTree* tree)
-      : tris_(tris), max_pairs_(max_pairs) {
+  Search(std::span<const ContactTriangle> tris, std::size_t max_pairs, const TriangleTree* tree,
+         std::atomic<bool>* found_one)
+      : tris_(tris), max_pairs_(max_pairs), found_one_(found_one) {
     const std::size_t n = tris.size();
     budget_ = kBudgetPerTriangle * n + (std::size_t{1} << 16);
     if (!tree) {
@@ -164,6 +165,7 @@ class Search {
         if (!(shared.sharing >> slot & 1u) ? !apart_triangles_meet(ti.p(), ti.n, tj.p(), tj.n)
                                            : !triangles_meet_improperly(ti, tj))
           continue;
+        if (found_one_) found_one_->store(true, std::memory_order_relaxed);
         if (found_.fetch_add(1) + 1 >= max_pairs_) return;
       }
     }
@@ -180,14 +182,15 @@ class Search {
   std::atomic<std::size_t> found_{0};
   std::atomic<std::size_t> examined_{0};
   std::atomic<bool> gave_up_{false};
+  std::atomic<bool>* found_one_ = nullptr;
 };
 
 }  // namespace
 
 ContactSearchResult find_contacts(std::span<const ContactTriangle> tris, std::size_t max_pairs,
-                                  const TriangleTree* tree) {
+                                  const TriangleTree* tree, std::atomic<bool>* found_one) {
   if (tris.size() < 2 || max_pairs == 0) return {};
-  return Search(tris, max_pairs, tree).run();
+  return Search(tris, max_pairs, tree, found_one).run();
 }
 
 }  // namespace ember::core

@@ -136,7 +136,7 @@ std::vector<std::uint32_t> operand_members(const Soup& soup, std::uint32_t opera
 }  // namespace
 
 SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand,
-                         const TriangleTree* tree) {
+                         const TriangleTree* tree, std::atomic<bool>* intersecting) {
   const std::vector<std::uint32_t> members = operand_members(root.soup, operand);
   if (members.empty()) return {};
   // Counting the contacts (not just finding one) costs at most one full
@@ -149,7 +149,7 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
                     });
   certify_embedded_stars(tris);  // tris holds all of the operand's triangles, as a star must
   if (tree && tree->size() != tris.size()) tree = nullptr;  // not this operand's: build one
-  const ContactSearchResult contacts = find_contacts(tris, OperandReport::kMaxReportedPairs, tree);
+  const ContactSearchResult contacts = find_contacts(tris, OperandReport::kMaxReportedPairs, tree, intersecting);
   tris = {};
   if (contacts.pairs > 0) return {SolidVerdict::SelfIntersecting, contacts.pairs, 0};
   if (contacts.gave_up) return {SolidVerdict::TooComplex, 0, 0};

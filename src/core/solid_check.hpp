@@ -16,6 +16,7 @@
 // caller then takes the general path, which is always correct.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <span>
 
@@ -67,8 +68,12 @@ struct SolidFinding {
 /// holds every operand's polygons, polygon i has id i; its reference point is
 /// outside everything).
 /// `tree`, if given, is the operand's triangle tree (build_operand_trees).
+/// `intersecting`, if given, is set as soon as the search meets the first
+/// self-intersection, before the count is complete: the defaults' solid
+/// path, started alongside the proof on the premise that every operand is
+/// solid, stops on it (solve_solid's `abandon`) and frees its threads.
 SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand,
-                         const TriangleTree* tree = nullptr);
+                         const TriangleTree* tree = nullptr, std::atomic<bool>* intersecting = nullptr);
 
 /// A grid triangle prepared for the contact test: where its corners are,
 /// their welded ids (equal iff equal positions, within the triangles

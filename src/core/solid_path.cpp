@@ -74,9 +74,11 @@ template <bool swap>
 /// Collects every pair of A x B that meets (boxes first, then exactly:
 /// triangles_meet), in subtrees a of A at depth da and b of B at depth db,
 /// whose boxes overlap (the caller tests them: most child pairs do not
-/// overlap, and the test costs less than a call).
+/// overlap, and the test costs less than a call). Stops early once `stop` is
+/// set (the run is abandoned: the pairs are not used).
 void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32_t a_base, std::size_t a, int da,
-                   const TriangleTree& B, std::uint32_t b_base, std::size_t b, int db, PairSink& sink) {
+                   const TriangleTree& B, std::uint32_t b_base, std::size_t b, int db, PairSink& sink,
+                   const std::atomic<bool>& stop) {
   const bool a_leaf = da == A.depth(), b_leaf = db == B.depth();
   if (a_leaf && b_leaf) {
     if (A.leaf_slots(a).first >= A.size() || B.leaf_slots(b).first >= B.size()) return;  // empty leaves
@@ -101,13 +103,17 @@ void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32
   const auto child = [&](int c) {
     if (split_a) {
       const std::size_t ac = 2 * a + 1 + static_cast<std::size_t>(c);
-      if (overlap(A.node(ac), B.node(b))) meeting_pairs(grid, A, a_base, ac, da + 1, B, b_base, b, db, sink);
+      if (overlap(A.node(ac), B.node(b))) meeting_pairs(grid, A, a_base, ac, da + 1, B, b_base, b, db, sink, stop);
     } else {
       const std::size_t bc = 2 * b + 1 + static_cast<std::size_t>(c);
-      if (overlap(A.node(a), B.node(bc))) meeting_pairs(grid, A, a_base, a, da, B, b_base, bc, db + 1, sink);
+      if (overlap(A.node(a), B.node(bc))) meeting_pairs(grid, A, a_base, a, da, B, b_base, bc, db + 1, sink, stop);
     }
   };
   if ((split_a ? A.depth() - da : B.depth() - db) >= kParallelLevels) {
+    // Only here, above the small subtrees: one relaxed load per task. (A
+    // proof that finds a self-intersection sets it; the sliver pile's
+    // speculative run otherwise searched its twin rods' ~all-pairs to the end.)
+    if (stop.load(std::memory_order_relaxed)) return;
     tbb::parallel_invoke([&] { child(0); }, [&] { child(1); });
   } else {
     child(0);
@@ -116,15 +122,17 @@ void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32
 }
 
 /// Broad and narrow phase: the meeting pairs of triangles of different
-/// operands. Deterministic (sorted), whatever the schedule.
-Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std::size_t n) {
+/// operands. Deterministic (sorted), whatever the schedule; incomplete (and
+/// not to be used) once `stop` is set.
+Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std::size_t n,
+                       const std::atomic<bool>& stop) {
   PairSink sink;
   const std::size_t operands = trees.tree.size();
   for (std::size_t a = 0; a < operands; ++a)
     for (std::size_t b = a + 1; b < operands; ++b) {
       const TriangleTree &A = trees.tree[a], &B = trees.tree[b];
       if (!A.empty() && !B.empty() && overlap(A.node(0), B.node(0)))
-        meeting_pairs(grid, A, trees.begin[a], 0, 0, B, trees.begin[b], 0, 0, sink);
+        meeting_pairs(grid, A, trees.begin[a], 0, 0, B, trees.begin[b], 0, 0, sink, stop);
     }
   // Counting sort by triangle, then each list ascending (lists are short,
   // and the result does not depend on the order pairs were found in).
@@ -489,7 +497,7 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const Gr
   const std::atomic<bool> never{false};
   const std::atomic<bool>& stop = abandon ? *abandon : never;
   // 1. Which triangles another operand's triangles meet, and which.
-  const Partners partners = find_partners(grid, trees, soup.size());
+  const Partners partners = find_partners(grid, trees, soup.size(), stop);
   if (stop.load()) return std::nullopt;
   SolidSolver solver(soup, grid, box, ctx, trees, partners, stop);
   std::vector<std::vector<OutputPolygon>> touched_out;

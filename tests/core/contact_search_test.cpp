@@ -6,6 +6,7 @@
 
 #include <tbb/task_arena.h>
 
+#include <atomic>
 #include <random>
 
 #include "core/contact_search.hpp"
@@ -118,16 +119,20 @@ TEST(ContactSearch, ClosedSurfaceHasNoContacts) {
     }
     if (!degenerate(t)) tris.push_back(t);
   }
-  const core::ContactSearchResult r = core::find_contacts(with_ids(tris), 1000);
+  std::atomic<bool> found_one{false};
+  const core::ContactSearchResult r = core::find_contacts(with_ids(tris), 1000, nullptr, &found_one);
   EXPECT_EQ(r.pairs, 0u);
   EXPECT_FALSE(r.gave_up);
+  EXPECT_FALSE(found_one.load());  // the signal that stops a speculative solid path: never without a pair
 }
 
 TEST(ContactSearch, StopsAtMaxPairs) {
   const std::vector<Tri> corners = scattered(1500, 1000, 60, 1500);
   const std::vector<ContactTriangle> tris = with_ids(corners);
   ASSERT_GT(all_pairs_count(tris), 20u);
-  EXPECT_EQ(core::find_contacts(tris, 20).pairs, 20u);
+  std::atomic<bool> found_one{false};
+  EXPECT_EQ(core::find_contacts(tris, 20, nullptr, &found_one).pairs, 20u);
+  EXPECT_TRUE(found_one.load());
 }
 
 TEST(ContactSearch, GivesUpOnAPileOfParallelSlivers) {
