@@ -84,8 +84,13 @@ FrameBoxes::FrameBoxes(const SoupApprox& a) {
 }
 
 namespace {
-constexpr int kCells = 32;      // per axis: ~5,000-polygon piles get ~5 per cell
-constexpr int kMaxSpan = 64;    // cells a polygon may cover before it counts as wide
+constexpr int kMaxCells = 32;  // per axis: a pile of ~5,000 thin polygons gets ~5 per cell
+constexpr int kMinCells = 4;
+constexpr int kMaxSpan = 64;   // cells a polygon may cover before it counts as wide
+/// The grid is coarsened until polygons cover at most this many cells on
+/// average (wide ones counted as kMaxSpan + 1); 2, 4 and 8 measured alike on
+/// the sliver pile, 16 6% slower, no coarsening 15-20% slower.
+constexpr std::size_t kMeanSpan = 4;
 }  // namespace
 
 std::array<int, 2> FrameBoxes::cell_range(std::size_t i, int axis) const {
@@ -98,13 +103,26 @@ std::array<int, 2> FrameBoxes::cell_range(std::size_t i, int axis) const {
 
 void FrameBoxes::build_grid() {
   const std::size_t n = lo_[0].size();
+  std::array<std::vector<double>, 2> centre;
   for (int axis = 0; axis < 2; ++axis) {
-    std::vector<double> centre(n);
-    for (std::size_t i = 0; i < n; ++i) centre[i] = 0.5 * (lo_[axis + 1][i] + hi_[axis + 1][i]);
-    std::sort(centre.begin(), centre.end());
-    std::vector<double>& cuts = cuts_[axis];
-    for (int c = 1; c < kCells; ++c) cuts.push_back(centre[n * static_cast<std::size_t>(c) / kCells]);
-    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    centre[axis].resize(n);
+    for (std::size_t i = 0; i < n; ++i) centre[axis][i] = 0.5 * (lo_[axis + 1][i] + hi_[axis + 1][i]);
+    std::sort(centre[axis].begin(), centre[axis].end());
+  }
+  for (int k = kMaxCells;; k /= 2) {
+    for (int axis = 0; axis < 2; ++axis) {
+      std::vector<double>& cuts = cuts_[axis];
+      cuts.clear();
+      for (int c = 1; c < k; ++c) cuts.push_back(centre[axis][n * static_cast<std::size_t>(c) / k]);
+      cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    }
+    if (k <= kMinCells) break;
+    std::size_t covered = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto r0 = cell_range(i, 0), r1 = cell_range(i, 1);
+      covered += static_cast<std::size_t>(std::min((r0[1] - r0[0] + 1) * (r1[1] - r1[0] + 1), kMaxSpan + 1));
+    }
+    if (covered <= kMeanSpan * n) break;
   }
   const auto columns = static_cast<std::size_t>(cuts_[1].size() + 1);
   const std::size_t cells = (cuts_[0].size() + 1) * columns;

@@ -90,6 +90,12 @@ class FrameBoxes {
   /// The grid across the principal axis: cell boundaries at quantiles of the
   /// polygons' centres on frame axes 1 and 2 (dense where the polygons are),
   /// members per cell in CSR form; polygons spanning many cells are `wide_`.
+  /// 32 cells per axis, halved (down to 4) while the polygons cover more
+  /// than 4 cells on average: a query marks every member of every cell it
+  /// covers, so a grid finer than the polygons marks each candidate many
+  /// times (the sliver pile's leaves covered 20-44 cells each at 32, 8,355
+  /// marks per query for 720 candidates; at 4-8 cells per axis the pile
+  /// solves 12-18% faster).
   std::array<std::vector<double>, 2> cuts_;
   std::vector<std::uint32_t> cell_begin_, members_, wide_;
 };

@@ -116,48 +116,60 @@ TEST(FrameBoxes, GridReturnsExactlyTheOverlappingBoxes) {
   EXPECT_LT(total, answered * b.tris.size() / 10);
 }
 
-TEST(FrameBoxes, ScanReturnsExactlyTheOverlappingBoxes) {
-  // The strip pile plus 40 triangles spread along x: they swing the leaf's
-  // principal direction, so here the strips come out wide (declined by the
-  // grid, answered by scan) and the grid's wide pass is checked against
-  // them; at small and at full-range coordinates. (A pile that the grid
-  // separates is GridReturnsExactlyTheOverlappingBoxes's.)
-  for (const std::int64_t origin : {std::int64_t{1000}, kCoordLimit - 2000000}) {
-    std::vector<Tri> tris = strip_pile(origin, 200);
-    for (int k = 0; k < 40; ++k) {
-      const std::int64_t at = origin + 20000 * k;
-      tris.push_back({IntPoint{at, origin, origin}, IntPoint{at + 5, origin + 900, origin + 3}, IntPoint{at, origin + 450, origin + 800}});
+/// A bundle of parallel needles along the diagonal `dir`, one per point of
+/// a 32 x 32 lattice across it: each needle's frame box is thin across the
+/// bundle, as the grid's cells are (one needle column per cell).
+std::vector<Tri> needle_bundle(std::int64_t origin, const IntPoint& dir) {
+  std::vector<Tri> tris;
+  for (int a = 0; a < 32; ++a)
+    for (int b = 0; b < 32; ++b) {
+      const IntPoint p{origin + 100 * a, origin, origin + 100 * b};
+      tris.push_back({p, IntPoint{p.x + 2, p.y + 1, p.z + 1}, IntPoint{p.x + dir.x, p.y + dir.y, p.z + dir.z}});
     }
-    // And 40 small triangles astride the pile, spread along it: their boxes
-    // meet strips' boxes, so the scan must find pairs across the two kinds.
-    const std::size_t first_astride = tris.size();
-    for (int k = 1; k <= 40; ++k) {
-      const IntPoint c{origin + 400000 * k / 41, origin - 800000 * k / 41, origin + 80000 * k / 41};
-      tris.push_back({IntPoint{c.x - 50, c.y, c.z - 40}, IntPoint{c.x + 900, c.y + 3, c.z}, IntPoint{c.x, c.y + 5, c.z + 40}});
+  return tris;
+}
+
+TEST(FrameBoxes, ScanReturnsExactlyTheOverlappingBoxes) {
+  // The needle bundle plus 12 triangles across it, each covering the whole
+  // cross-section at one point along it: they are few, so the grid stays
+  // fine for the needles, and wide, so the grid declines them (scan answers)
+  // and its wide pass must find them for every needle they meet; at small
+  // and at full-range coordinates. Every answer is checked against testing
+  // all pairs.
+  const IntPoint dir{400000, -800000, 80000};
+  for (const std::int64_t origin : {std::int64_t{1000}, kCoordLimit - 2000000}) {
+    std::vector<Tri> tris = needle_bundle(origin, dir);
+    const std::size_t needles = tris.size();
+    for (int k = 1; k <= 12; ++k) {
+      const IntPoint c{origin + dir.x * k / 13, origin + dir.y * k / 13, origin + dir.z * k / 13};
+      tris.push_back({IntPoint{c.x - 500, c.y - 1000, c.z - 500}, IntPoint{c.x + 7000, c.y + 1000, c.z - 400},
+                      IntPoint{c.x - 400, c.y + 2000, c.z + 7000}});
     }
     const Built b = build(tris);
     const FrameBoxes frame(b.approx);
     FrameBoxes::Query query;
     std::vector<std::uint32_t> got, grid;
-    std::size_t declined = 0, found = 0, astride_meets_pile = 0;
+    std::size_t declined = 0, answered_pairs = 0, wide_meets_needle = 0;
     for (std::size_t i = 0; i < b.tris.size(); ++i) {
       frame.scan(i, got);
       std::vector<std::uint32_t> want;
       for (std::uint32_t j = 0; j < b.tris.size(); ++j)
         if (j != i && !frame.apart(i, j)) want.push_back(j);
       ASSERT_EQ(got, want) << "polygon " << i;
-      found += got.size();
-      if (i >= first_astride) astride_meets_pile += std::count_if(got.begin(), got.end(), [](std::uint32_t j) { return j < 400; });
+      if (i >= needles) wide_meets_needle += std::count_if(got.begin(), got.end(), [&](std::uint32_t j) { return j < needles; });
       if (frame.overlapping(i, query, grid)) {
         EXPECT_EQ(grid, got) << "polygon " << i;
+        // The needles' answers include the wide triangles they meet (the
+        // grid's wide pass), not only their cells' members.
+        answered_pairs += static_cast<std::size_t>(std::count_if(grid.begin(), grid.end(), [&](std::uint32_t j) { return j >= needles; }));
       } else {
         ++declined;
       }
     }
-    EXPECT_GT(declined, 0u);  // some polygons are scanned, not looked up
-    EXPECT_GT(found, b.tris.size());
-    EXPECT_LT(found, b.tris.size() * (b.tris.size() - 1));  // some boxes are apart: the scan filters
-    EXPECT_GE(astride_meets_pile, 40u);                     // every astride triangle meets a strip's box
+    EXPECT_GE(declined, 12u);             // the wide triangles are scanned, not looked up
+    EXPECT_LT(declined, needles / 2);     // the needles are looked up
+    EXPECT_GT(wide_meets_needle, 12u);    // each wide triangle meets needles' boxes
+    EXPECT_GT(answered_pairs, 12u);       // ... which the grid's answers for the needles include
   }
 }
 
