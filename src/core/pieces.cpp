@@ -49,8 +49,9 @@ bool split_by_transverse(const Polygon& poly, const Plane& support, const Polygo
                          std::vector<Plane>& cons, Polygon& neg, Polygon& pos) {
   bool below = false, above = false;
   signs.resize(poly.vertices.size());
+  const PlaneApprox approx(other.support);  // converted once, not per vertex (four int128 -> double each)
   for (std::size_t v = 0; v < poly.vertices.size(); ++v) {
-    const int s = classify(poly.vertices[v], other.support);
+    const int s = classify(poly.vertices[v], other.support, approx);
     signs[v] = static_cast<std::int8_t>(s);
     below |= s < 0;
     above |= s > 0;
