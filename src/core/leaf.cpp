@@ -47,17 +47,37 @@ struct LeafScratch {
   std::vector<std::uint32_t> candidates;  ///< the frame grid's answer for t
 };
 
-/// True when every vertex approximation lies clearly on one side of the
-/// plane, strictly (classify's filter decides each, no exact fallback): the
-/// polygon cannot touch the plane, as touches_plane would find exactly.
-bool clearly_one_side(std::span<const std::array<double, 3>> verts, const PlaneApprox& plane) {
-  int side = 0;
-  for (const std::array<double, 3>& f : verts) {
-    const int s = detail::filtered_sign(f, plane, [] { return 0; });
-    if (s == 0 || (side != 0 && s != side)) return false;
-    side = s;
+/// touches_plane(poly, plane, approx, signs) for a polygon whose vertex
+/// approximations (each vertex's f, in order: SoupApprox) are `verts`, with
+/// the same signs and answer: classify's filter on every vertex first, and
+/// the exact test only for the vertices it cannot place, none at all when
+/// the filter puts every vertex strictly on one side (most polygons a pile
+/// leaf's frame grid offers). Filtering first and then calling
+/// touches_plane, which filtered again, was 12% of the sliver pile's solve.
+bool touches_plane_filtered(std::span<const std::array<double, 3>> verts, const Polygon& poly, const Plane& plane,
+                            const PlaneApprox& approx, std::vector<std::int8_t>& signs) {
+  constexpr int kUnsure = 2;
+  const std::size_t n = verts.size();
+  signs.resize(n);
+  bool unsure = false, neg = false, pos = false;
+  for (std::size_t v = 0; v < n; ++v) {
+    const int s = detail::filtered_sign(verts[v], approx, [] { return kUnsure; });
+    signs[v] = static_cast<std::int8_t>(s);
+    unsure |= s == kUnsure;
+    neg |= s < 0;
+    pos |= s == 1;
   }
-  return side != 0;
+  if (!unsure) return neg && pos;  // the filter never answers 0
+  bool zero = false;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (signs[v] != kUnsure) continue;
+    const int s = classify_exact(poly.vertices[v], plane);
+    signs[v] = static_cast<std::int8_t>(s);
+    zero |= s == 0;
+    neg |= s < 0;
+    pos |= s > 0;
+  }
+  return zero || (neg && pos);
 }
 
 /// True if t lies in a face plane of the box: then one side of t is outside
@@ -113,8 +133,9 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
     // Coplanar first: one plane comparison instead of exact zero tests of
     // every vertex (stacks are full of them).
     if (direction[i] != t_direction || !coplanar(t.poly->support, o.poly->support)) {
-      if (sc.approx && clearly_one_side(sc.approx->of(i), t_approx)) return;
-      if (!touches_plane(*o.poly, t.poly->support, t_approx, sc.other_signs)) return;
+      if (!(sc.approx ? touches_plane_filtered(sc.approx->of(i), *o.poly, t.poly->support, t_approx, sc.other_signs)
+                      : touches_plane(*o.poly, t.poly->support, t_approx, sc.other_signs)))
+        return;
       for (const std::int8_t v : sc.other_signs) {
         front |= v > 0;
         back |= v < 0;
