@@ -55,13 +55,13 @@ struct LeafScratch {
 /// leaf's frame grid offers). Filtering first and then calling
 /// touches_plane, which filtered again, was 12% of the sliver pile's solve.
 bool touches_plane_filtered(std::span<const std::array<double, 3>> verts, const Polygon& poly, const Plane& plane,
-                            const PlaneApprox& approx, std::vector<std::int8_t>& signs) {
-  constexpr int kUnsure = 2;
+                            const LeafPlaneFilter& filter, std::vector<std::int8_t>& signs) {
+  constexpr int kUnsure = LeafPlaneFilter::kUnsure;
   const std::size_t n = verts.size();
   signs.resize(n);
   bool unsure = false, neg = false, pos = false;
   for (std::size_t v = 0; v < n; ++v) {
-    const int s = detail::filtered_sign(verts[v], approx, [] { return kUnsure; });
+    const int s = filter.sign(verts[v]);
     signs[v] = static_cast<std::int8_t>(s);
     unsure |= s == kUnsure;
     neg |= s < 0;
@@ -106,6 +106,7 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
   const std::uint32_t t_direction = direction[t_index];
   const bool t_solid = ctx.solid[t.operand] != 0;
   const PlaneApprox t_approx(t.poly->support);
+  const LeafPlaneFilter t_filter(t_approx, sc.approx ? sc.approx->max_abs : 0);
   sc.related.clear();
   sc.related_at.clear();
   sc.related_signs.clear();
@@ -133,7 +134,7 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
     // Coplanar first: one plane comparison instead of exact zero tests of
     // every vertex (stacks are full of them).
     if (direction[i] != t_direction || !coplanar(t.poly->support, o.poly->support)) {
-      if (!(sc.approx ? touches_plane_filtered(sc.approx->of(i), *o.poly, t.poly->support, t_approx, sc.other_signs)
+      if (!(sc.approx ? touches_plane_filtered(sc.approx->of(i), *o.poly, t.poly->support, t_filter, sc.other_signs)
                       : touches_plane(*o.poly, t.poly->support, t_approx, sc.other_signs)))
         return;
       for (const std::int8_t v : sc.other_signs) {

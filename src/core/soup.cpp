@@ -91,6 +91,9 @@ void approximate(const Soup& soup, SoupApprox& out) {
     out.normal_sign.push_back(sign);
     out.begin.push_back(static_cast<std::uint32_t>(out.verts.size()));
   }
+  out.max_abs = 0;
+  for (const std::array<double, 3>& v : out.verts)
+    out.max_abs = std::max({out.max_abs, std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2])});
 }
 
 bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, const SoupApprox& a, std::size_t i) {

@@ -2,6 +2,7 @@
 // Internal data of the Boolean core: the polygon soup of a subproblem, its
 // integer box, dyadic reference points and winding-number vectors.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -71,11 +72,33 @@ struct SoupApprox {
   std::vector<std::array<double, 3>> verts;
   std::vector<std::uint32_t> begin;                     ///< polygon i: verts[begin[i] .. begin[i+1])
   std::vector<std::array<std::int8_t, 3>> normal_sign;  ///< sign of each support normal coordinate
+  double max_abs = 0;  ///< the largest |coordinate| in verts
   std::span<const std::array<double, 3>> of(std::size_t i) const {
     return {verts.data() + begin[i], verts.data() + begin[i + 1]};
   }
 };
 void approximate(const Soup& soup, SoupApprox& out);
+
+/// classify's filter (point.hpp) with one error bound for all the vertices
+/// of a SoupApprox: there |v - V/w| < 13u m, m = |a x~| + |b y~| + |c z~| +
+/// |d~| summed in double; with every |coordinate| <= max_abs,
+/// m <= (|a| + |b| + |c|) max_abs + |d~| (up to a few roundings, which the
+/// bound's 2^-47 instead of classify's 2^-48 covers many times over). Per
+/// vertex three products, three sums and a comparison, without classify's
+/// sum of magnitudes; kUnsure where only the exact test can tell.
+struct LeafPlaneFilter {
+  LeafPlaneFilter(const PlaneApprox& p, double max_abs)
+      : a(p.a), b(p.b), c(p.c), d(p.d),
+        bound(((std::fabs(p.a) + std::fabs(p.b) + std::fabs(p.c)) * max_abs + std::fabs(p.d)) * 0x1p-47) {}
+  static constexpr int kUnsure = 2;
+  /// The sign of the plane at f (a vertex approximation with |f_k| <=
+  /// max_abs), or kUnsure.
+  int sign(const std::array<double, 3>& f) const {
+    const double v = (a * f[0] + b * f[1]) + (c * f[2] + d);
+    return v > bound ? 1 : (v < -bound ? -1 : kUnsure);
+  }
+  double a, b, c, d, bound;
+};
 
 /// line_clearly_misses for polygon i of the soup that `a` approximates: the
 /// same answer as for the polygon itself, from the flat arrays.

@@ -83,6 +83,49 @@ TEST(Soup, FlatApproximationsFilterLinesLikeThePolygons) {
   EXPECT_LT(misses, checked);
 }
 
+TEST(Soup, LeafPlaneFilterSignsAgreeWithTheExactTest) {
+  // Triangles, whole and cut (homogeneous vertices), at small and at
+  // full-range coordinates; every polygon's support plane against every
+  // vertex of the soup, its own (on the plane: never decided by the filter)
+  // and the others'.
+  for (const std::int64_t range : {std::int64_t{1000}, kCoordLimit}) {
+    std::mt19937_64 rng(static_cast<std::uint64_t>(range));
+    Soup soup;
+    std::vector<std::array<IntPoint, 3>> corners(120);
+    for (std::uint32_t i = 0; i < corners.size(); ++i) {
+      corners[i] = random_triangle(rng, range);
+      soup.push_back(unbuilt_triangle(corners[i], i, 0));
+      materialize(soup.back());
+      SplitPath path;
+      if (i % 2 == 1)
+        for (int k = 0; k < 3; ++k) random_split(rng, soup.back(), path);
+    }
+    SoupApprox flat;
+    approximate(soup, flat);
+    std::size_t decided = 0, unsure = 0;
+    for (const SoupPolygon& t : soup) {
+      const Plane& plane = t.poly->support;
+      const LeafPlaneFilter filter(PlaneApprox(plane), flat.max_abs);
+      for (std::size_t i = 0; i < soup.size(); ++i) {
+        const auto approx = flat.of(i);
+        for (std::size_t v = 0; v < approx.size(); ++v) {
+          const int s = filter.sign(approx[v]);
+          const int exact = classify_exact(soup[i].poly->vertices[v], plane);
+          if (&soup[i] == &t) ASSERT_EQ(exact, 0);
+          if (s == LeafPlaneFilter::kUnsure) {
+            ++unsure;
+            continue;
+          }
+          ASSERT_EQ(s, exact) << "polygon " << i << " vertex " << v << ", range " << range;
+          ++decided;
+        }
+      }
+    }
+    EXPECT_GT(decided, 10 * unsure);  // the filter decides nearly all ...
+    EXPECT_GE(unsure, soup.size() * 3);  // ... but never a polygon's own vertices
+  }
+}
+
 TEST(Soup, PathPiecesExpandToTheSubdivisionsPolygons) {
   std::mt19937_64 rng(5);
   std::vector<std::array<IntPoint, 3>> corners(300);
