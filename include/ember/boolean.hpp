@@ -108,6 +108,10 @@ struct OperandReport {
   SolidStatus solid = SolidStatus::NotChecked;
   std::size_t open_edges = 0;               ///< edges not matched by an opposite edge
   std::size_t self_intersecting_pairs = 0;  ///< pairs found (the search stops at kMaxReportedPairs)
+  /// False when self_intersecting_pairs is only a lower bound: the search
+  /// stopped at kMaxReportedPairs or, in a pile of overlapping slivers, at its
+  /// work budget once a pair had decided the verdict.
+  bool self_intersecting_pairs_complete = true;
   std::size_t misoriented_components = 0;   ///< components with winding number != 0 in front
   static constexpr std::size_t kMaxReportedPairs = 1000;
 };

@@ -107,6 +107,7 @@ void report(const BooleanOptions& options, std::string_view phase, double fracti
 bool record_proof(const core::SolidFinding& f, std::size_t o, BooleanResult& result) {
   OperandReport& report = result.stats.operands[o];
   report.self_intersecting_pairs = f.self_intersecting_pairs;
+  report.self_intersecting_pairs_complete = f.pairs_complete;
   report.misoriented_components = f.misoriented_components;
   switch (f.verdict) {
     case core::SolidVerdict::Solid: report.solid = SolidStatus::Proven; return true;

@@ -29,6 +29,7 @@ class Search {
       : tris_(tris), max_pairs_(max_pairs), found_one_(found_one) {
     const std::size_t n = tris.size();
     budget_ = kBudgetPerTriangle * n + (std::size_t{1} << 16);
+    counting_budget_ = kCountingPerTriangle * n + (std::size_t{1} << 16);
     if (!tree) {
       std::vector<Box32> boxes(n);
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -48,7 +49,8 @@ class Search {
     self(0, 0, examined);
     flush(examined);
     const std::size_t found = found_.load();
-    return {std::min(found, max_pairs_), found == 0 && gave_up_.load()};
+    const bool stopped = gave_up_.load() || found >= max_pairs_;
+    return {std::min(found, max_pairs_), found == 0 && gave_up_.load(), !stopped};
   }
 
  private:
@@ -64,10 +66,12 @@ class Search {
   }
   bool spawns(int depth) const { return ((tree().first_leaf() + 1) >> depth) >= kSpawnLeaves; }
 
-  /// Adds this task's examined pairs to the total; past the budget, give up.
+  /// Adds this task's examined pairs to the total; past the budget, give up,
+  /// and past the counting budget too once a pair has decided the verdict.
   void flush(std::size_t& examined) {
     if (examined == 0) return;
-    if (examined_.fetch_add(examined, std::memory_order_relaxed) + examined > budget_) gave_up_.store(true);
+    const std::size_t total = examined_.fetch_add(examined, std::memory_order_relaxed) + examined;
+    if (total > budget_ || (total > counting_budget_ && found_.load(std::memory_order_relaxed) > 0)) gave_up_.store(true);
     examined = 0;
   }
 
@@ -179,6 +183,7 @@ class Search {
   const TriangleTree* tree_ptr_ = nullptr;
   std::size_t max_pairs_;
   std::size_t budget_ = 0;
+  std::size_t counting_budget_ = 0;
   std::atomic<std::size_t> found_{0};
   std::atomic<std::size_t> examined_{0};
   std::atomic<bool> gave_up_{false};

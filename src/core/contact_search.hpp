@@ -23,6 +23,9 @@ struct ContactSearchResult {
   /// The search passed its work budget (a pile of overlapping slivers): no
   /// verdict. Only when no pair was found: a found pair decides.
   bool gave_up = false;
+  /// `pairs` is every pair: the search ran to its end (not stopped at
+  /// max_pairs, at its budget, or at its counting budget).
+  bool complete = true;
 };
 
 /// Counts the pairs of `tris` that meet improperly (triangles_meet_improperly),
@@ -45,5 +48,12 @@ ContactSearchResult find_contacts(std::span<const ContactTriangle> tris, std::si
 /// "Solid proof"). A proof that gives up sends the operand down the general
 /// path, which costs case 582 four times the Boolean's time.
 inline constexpr std::size_t kBudgetPerTriangle = 2048;
+
+/// Once a pair is found the verdict is decided; the search goes on only to
+/// count (for the report), and stops counting past this many box pairs per
+/// triangle (ordinary meshes examine 25-320 in all, so their counts stay
+/// complete): the sliver pile's self-intersecting rod counted its 64 pairs
+/// to the full budget, ~300 ms of a 2 s Boolean.
+inline constexpr std::size_t kCountingPerTriangle = 512;
 
 }  // namespace ember::core

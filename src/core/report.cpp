@@ -14,7 +14,8 @@ std::string describe_solid_check(const OperandReport& r) {
     case SolidStatus::Open:
       return "not solid: open (" + std::to_string(r.open_edges) + " edges not matched by an opposite edge)";
     case SolidStatus::SelfIntersecting: {
-      const bool capped = r.self_intersecting_pairs >= OperandReport::kMaxReportedPairs;
+      const bool capped =
+          r.self_intersecting_pairs >= OperandReport::kMaxReportedPairs || !r.self_intersecting_pairs_complete;
       return "not solid: self-intersecting (" + std::string(capped ? "at least " : "") +
              std::to_string(r.self_intersecting_pairs) +
              " triangle pairs meet beyond a shared vertex or edge)";

@@ -151,7 +151,7 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
   if (tree && tree->size() != tris.size()) tree = nullptr;  // not this operand's: build one
   const ContactSearchResult contacts = find_contacts(tris, OperandReport::kMaxReportedPairs, tree, intersecting);
   tris = {};
-  if (contacts.pairs > 0) return {SolidVerdict::SelfIntersecting, contacts.pairs, 0};
+  if (contacts.pairs > 0) return {SolidVerdict::SelfIntersecting, contacts.pairs, 0, contacts.complete};
   if (contacts.gave_up) return {SolidVerdict::TooComplex, 0, 0};
   // One representative per component across manifold edges: its smallest
   // id, the first member in order.

@@ -62,6 +62,7 @@ struct SolidFinding {
   SolidVerdict verdict = SolidVerdict::Solid;
   std::size_t self_intersecting_pairs = 0;  ///< counted up to OperandReport::kMaxReportedPairs
   std::size_t misoriented_components = 0;
+  bool pairs_complete = true;  ///< self_intersecting_pairs is every pair (ContactSearchResult::complete)
 };
 
 /// Decides whether `operand` is solid. `root` is the whole problem (its soup

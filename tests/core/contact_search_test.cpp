@@ -131,7 +131,9 @@ TEST(ContactSearch, StopsAtMaxPairs) {
   const std::vector<ContactTriangle> tris = with_ids(corners);
   ASSERT_GT(all_pairs_count(tris), 20u);
   std::atomic<bool> found_one{false};
-  EXPECT_EQ(core::find_contacts(tris, 20, nullptr, &found_one).pairs, 20u);
+  const core::ContactSearchResult r = core::find_contacts(tris, 20, nullptr, &found_one);
+  EXPECT_EQ(r.pairs, 20u);
+  EXPECT_FALSE(r.complete);  // a lower bound: the report says "at least"
   EXPECT_TRUE(found_one.load());
 }
 
@@ -151,6 +153,30 @@ TEST(ContactSearch, GivesUpOnAPileOfParallelSlivers) {
   const core::ContactSearchResult small = core::find_contacts(with_ids(tris), 1000);
   EXPECT_EQ(small.pairs, 0u);
   EXPECT_FALSE(small.gave_up);
+  EXPECT_TRUE(small.complete);
+}
+
+TEST(ContactSearch, StopsCountingAPileOnceAPairDecides) {
+  // The parallel pile of GivesUpOnAPileOfParallelSlivers with two of its
+  // triangles tilted to cross a neighbour: the pairs decide "not solid", so
+  // the search stops counting at kCountingPerTriangle box pairs per
+  // triangle, well before its budget, and says its count is a lower bound.
+  const std::int64_t n = 2 * static_cast<std::int64_t>(core::kBudgetPerTriangle) + 1000;
+  std::vector<Tri> tris;
+  const std::int64_t w = 1 << 20;
+  for (std::int64_t k = 0; k < n; ++k) tris.push_back({{{0, 0, k}, {w, 0, k + w}, {0, w, k}}});
+  for (const std::int64_t k : {n / 5, 3 * n / 4}) tris[static_cast<std::size_t>(k)][2].z = k + 3;  // crosses k + 1 .. k + 2
+  const core::ContactSearchResult r = core::find_contacts(with_ids(tris), 1000);
+  EXPECT_GT(r.pairs, 0u);
+  EXPECT_FALSE(r.gave_up);  // a pair decided: a verdict
+  EXPECT_FALSE(r.complete);
+  // Small enough to search to the end: every pair, counted completely.
+  tris.resize(core::kCountingPerTriangle / 2);
+  tris[10][2].z = 10 + 3;
+  const core::ContactSearchResult small = core::find_contacts(with_ids(tris), 1000);
+  EXPECT_EQ(small.pairs, all_pairs_count(with_ids(tris)));
+  EXPECT_GT(small.pairs, 0u);
+  EXPECT_TRUE(small.complete);
 }
 
 }  // namespace
