@@ -6,6 +6,7 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <atomic>
 #include <random>
 
@@ -157,23 +158,41 @@ TEST(ContactSearch, GivesUpOnAPileOfParallelSlivers) {
 }
 
 TEST(ContactSearch, StopsCountingAPileOnceAPairDecides) {
-  // The parallel pile of GivesUpOnAPileOfParallelSlivers with two of its
-  // triangles tilted to cross a neighbour: the pairs decide "not solid", so
-  // the search stops counting at kCountingPerTriangle box pairs per
-  // triangle, well before its budget, and says its count is a lower bound.
+  // The parallel pile of GivesUpOnAPileOfParallelSlivers with every eighth
+  // triangle tilted up to a common far corner: each tilted one crosses every
+  // plain triangle above it, so whatever leaf pair the search (any thread
+  // count, any schedule) examines first decides "not solid". The search
+  // then only counts, and stops counting at kCountingPerTriangle box pairs
+  // per triangle, far below its budget and before it has counted them all;
+  // its count is a lower bound.
   const std::int64_t n = 2 * static_cast<std::int64_t>(core::kBudgetPerTriangle) + 1000;
-  std::vector<Tri> tris;
   const std::int64_t w = 1 << 20;
-  for (std::int64_t k = 0; k < n; ++k) tris.push_back({{{0, 0, k}, {w, 0, k + w}, {0, w, k}}});
-  for (const std::int64_t k : {n / 5, 3 * n / 4}) tris[static_cast<std::size_t>(k)][2].z = k + 3;  // crosses k + 1 .. k + 2
-  const core::ContactSearchResult r = core::find_contacts(with_ids(tris), 1000);
-  EXPECT_GT(r.pairs, 0u);
-  EXPECT_FALSE(r.gave_up);  // a pair decided: a verdict
-  EXPECT_FALSE(r.complete);
+  std::vector<Tri> tris;
+  std::size_t crossing = 0, plain_above = 0;
+  for (std::int64_t k = n - 1; k >= 0; --k) {  // top down, to count the plain ones above
+    const bool tilted = k % 8 == 7;
+    tris.push_back({{{0, 0, k}, {w, 0, k + w}, {0, w, tilted ? n + 10 : k}}});
+    if (tilted) {
+      crossing += plain_above;
+    } else {
+      ++plain_above;
+    }
+  }
+  std::reverse(tris.begin(), tris.end());
+  for (const int threads : {1, 2, 4}) {
+    tbb::task_arena arena(threads);
+    core::ContactSearchResult r;
+    arena.execute([&] { r = core::find_contacts(with_ids(tris), std::size_t{1} << 30); });
+    EXPECT_GT(r.pairs, 0u) << threads << " threads";
+    EXPECT_LT(r.pairs, crossing) << threads << " threads";  // stopped counting
+    EXPECT_FALSE(r.gave_up) << threads << " threads";      // a pair decided: a verdict
+    EXPECT_FALSE(r.complete) << threads << " threads";
+  }
   // Small enough to search to the end: every pair, counted completely.
   tris.resize(core::kCountingPerTriangle / 2);
-  tris[10][2].z = 10 + 3;
-  const core::ContactSearchResult small = core::find_contacts(with_ids(tris), 1000);
+  for (Tri& t : tris)
+    if (t[2].z > n) t[2].z = static_cast<std::int64_t>(tris.size()) + 10;  // the small pile's own far corner
+  const core::ContactSearchResult small = core::find_contacts(with_ids(tris), std::size_t{1} << 30);
   EXPECT_EQ(small.pairs, all_pairs_count(with_ids(tris)));
   EXPECT_GT(small.pairs, 0u);
   EXPECT_TRUE(small.complete);
