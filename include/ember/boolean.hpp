@@ -107,7 +107,7 @@ struct OperandReport {
   std::size_t flipped_triangles = 0;    ///< the grid reversed their orientation
   SolidStatus solid = SolidStatus::NotChecked;
   std::size_t open_edges = 0;               ///< edges not matched by an opposite edge
-  std::size_t self_intersecting_pairs = 0;  ///< pairs found (the search stops at kMaxReportedPairs)
+  std::size_t self_intersecting_pairs = 0;  ///< pairs found (see self_intersecting_pairs_complete)
   /// False when self_intersecting_pairs is only a lower bound: the search
   /// stopped at kMaxReportedPairs or, in a pile of overlapping slivers, at its
   /// work budget once a pair had decided the verdict.

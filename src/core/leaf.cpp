@@ -49,7 +49,8 @@ struct LeafScratch {
 
 /// touches_plane(poly, plane, approx, signs) for a polygon whose vertex
 /// approximations (each vertex's f, in order: SoupApprox) are `verts`, with
-/// the same signs and answer: classify's filter on every vertex first, and
+/// the same signs and answer: a floating-point filter on every vertex first
+/// (LeafPlaneFilter: classify's, with one bound for the leaf), and
 /// the exact test only for the vertices it cannot place, none at all when
 /// the filter puts every vertex strictly on one side (most polygons a pile
 /// leaf's frame grid offers). Filtering first and then calling

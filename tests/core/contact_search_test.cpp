@@ -159,9 +159,10 @@ TEST(ContactSearch, GivesUpOnAPileOfParallelSlivers) {
 
 TEST(ContactSearch, StopsCountingAPileOnceAPairDecides) {
   // The parallel pile of GivesUpOnAPileOfParallelSlivers with every eighth
-  // triangle tilted up to a common far corner: each tilted one crosses every
-  // plain triangle above it, so whatever leaf pair the search (any thread
-  // count, any schedule) examines first decides "not solid". The search
+  // triangle tilted up to a common far corner: each tilted one (the top of
+  // its leaf of eight) crosses every plain triangle above it, so whatever
+  // pair of distinct leaves the search (any thread count, any schedule)
+  // examines first decides "not solid"; pairs within a leaf find none. The search
   // then only counts, and stops counting at kCountingPerTriangle box pairs
   // per triangle, far below its budget and before it has counted them all;
   // its count is a lower bound.
