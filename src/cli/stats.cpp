@@ -28,11 +28,14 @@ std::string json_string(const std::string& s) {
 void print_stats(const BooleanResult& r, const char* operation, const std::vector<std::string>& inputs) {
   const BooleanStats& s = r.stats;
   std::size_t open_edges = 0, pairs = 0, misoriented = 0;
+  bool pairs_complete = true;  // every operand's count is exact, not a lower bound
   std::string solid_check;
   for (std::size_t i = 0; i < s.operands.size(); ++i) {
     const OperandReport& o = s.operands[i];
     open_edges += o.open_edges;
     pairs += o.self_intersecting_pairs;
+    pairs_complete &= o.self_intersecting_pairs_complete &&
+                      o.self_intersecting_pairs < OperandReport::kMaxReportedPairs;
     misoriented += o.misoriented_components;
     if (!solid_check.empty()) solid_check += "; ";
     solid_check += (i < inputs.size() ? inputs[i] : "operand " + std::to_string(i)) + ": " + describe_solid_check(o);
@@ -41,7 +44,8 @@ void print_stats(const BooleanResult& r, const char* operation, const std::vecto
                "{\"version\": \"%s\", \"operation\": \"%s\", \"input_triangles\": %zu, \"dropped_degenerate\": %zu, "
                "\"collapsed_triangles\": %zu, \"flipped_triangles\": %zu, \"grid_step\": %.17g, "
                "\"output_polygons\": %zu, \"dropped_slivers\": %zu, \"solid_operands\": %zu, \"merged_triangles\": %zu, \"solid_path\": %d, "
-               "\"open_edges\": %zu, \"self_intersecting_pairs\": %zu, \"misoriented_components\": %zu, "
+               "\"open_edges\": %zu, \"self_intersecting_pairs\": %zu, \"self_intersecting_pairs_complete\": %d, "
+               "\"misoriented_components\": %zu, "
                "\"solid_check\": %s, \"output_vertices\": %zu, \"tjunctions_resolved\": %zu, "
                "\"collinear_removed\": %zu, \"regions\": %zu, \"fallback_regions\": %zu, "
                "\"rounded_degenerate\": %zu, \"time_ms\": %.3f, \"setup_ms\": %.3f, \"proof_ms\": %.3f, "
@@ -50,7 +54,7 @@ void print_stats(const BooleanResult& r, const char* operation, const std::vecto
                EMBER_VERSION, operation, s.input_triangles, s.dropped_degenerate, s.collapsed_triangles,
                s.flipped_triangles, s.grid_step, s.output_polygons, s.dropped_slivers, s.solid_operands, s.merged_triangles,
                s.solid_path ? 1 : 0, open_edges,
-               pairs, misoriented, json_string(solid_check).c_str(), s.output_vertices, s.tjunctions_resolved,
+               pairs, pairs_complete ? 1 : 0, misoriented, json_string(solid_check).c_str(), s.output_vertices, s.tjunctions_resolved,
                s.collinear_removed, s.regions, s.fallback_regions, s.rounded_degenerate, s.time_ms, s.setup_ms,
                s.proof_ms, s.solve_ms, s.output_ms, s.weld_ms, s.tjunction_ms, s.regions_ms, s.triangulate_ms,
                s.threads);

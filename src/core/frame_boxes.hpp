@@ -52,6 +52,10 @@ class FrameBoxes {
   /// in gather (its soup entry, its world box, then its frame box) made
   /// gather 30% of the pile's time.
   void scan(std::size_t i, std::vector<std::uint32_t>& out) const;
+  /// Cells per axis of the grid across the principal axis (after coarsening).
+  std::array<int, 2> grid_cells() const {
+    return {static_cast<int>(cuts_[0].size()) + 1, static_cast<int>(cuts_[1].size()) + 1};
+  }
   /// True when polygons i and j cannot share a point.
   bool apart(std::size_t i, std::size_t j) const {
     return lo_[0][j] > hi_[0][i] || lo_[0][i] > hi_[0][j] || lo_[1][j] > hi_[1][i] || lo_[1][i] > hi_[1][j] ||

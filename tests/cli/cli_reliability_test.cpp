@@ -261,6 +261,7 @@ TEST(CliSolidCheck, StatsAndWarningSayWhyAnOperandIsNotSolid) {
   EXPECT_TRUE(has(r.err, "ember: warning: inv.obj: not solid: inconsistent orientation (1 components")) << describe(r);
   EXPECT_EQ(stats_value(r.err, "misoriented_components"), "1") << describe(r);
   EXPECT_GT(std::stoi(stats_value(r.err, "self_intersecting_pairs")), 0) << describe(r);
+  EXPECT_EQ(stats_value(r.err, "self_intersecting_pairs_complete"), "1") << describe(r);  // an exact count
   EXPECT_EQ(stats_value(r.err, "open_edges"), "0") << describe(r);
   EXPECT_EQ(stats_value(r.err, "dropped_slivers"), "0") << describe(r);
   EXPECT_EQ(stats_value(r.err, "solid_operands"), "1") << describe(r);

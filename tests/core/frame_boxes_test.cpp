@@ -117,14 +117,15 @@ TEST(FrameBoxes, GridReturnsExactlyTheOverlappingBoxes) {
 }
 
 /// A bundle of parallel needles along the diagonal `dir`, one per point of
-/// a 32 x 32 lattice across it: each needle's frame box is thin across the
-/// bundle, as the grid's cells are (one needle column per cell).
-std::vector<Tri> needle_bundle(std::int64_t origin, const IntPoint& dir) {
+/// a 32 x 32 lattice (100 units apart) across it, each with the short side
+/// `base`: by default each needle's frame box is thin across the bundle, as
+/// the grid's cells are (one needle column per cell).
+std::vector<Tri> needle_bundle(std::int64_t origin, const IntPoint& dir, const IntPoint& base = {2, 1, 1}) {
   std::vector<Tri> tris;
   for (int a = 0; a < 32; ++a)
     for (int b = 0; b < 32; ++b) {
       const IntPoint p{origin + 100 * a, origin, origin + 100 * b};
-      tris.push_back({p, IntPoint{p.x + 2, p.y + 1, p.z + 1}, IntPoint{p.x + dir.x, p.y + dir.y, p.z + dir.z}});
+      tris.push_back({p, IntPoint{p.x + base.x, p.y + base.y, p.z + base.z}, IntPoint{p.x + dir.x, p.y + dir.y, p.z + dir.z}});
     }
   return tris;
 }
@@ -147,6 +148,9 @@ TEST(FrameBoxes, ScanReturnsExactlyTheOverlappingBoxes) {
     }
     const Built b = build(tris);
     const FrameBoxes frame(b.approx);
+    // Thin needles: the grid stays at its finest (one needle column per cell).
+    EXPECT_EQ(frame.grid_cells()[0], 32);
+    EXPECT_EQ(frame.grid_cells()[1], 32);
     FrameBoxes::Query query;
     std::vector<std::uint32_t> got, grid;
     std::size_t declined = 0, answered_pairs = 0, wide_meets_needle = 0;
@@ -170,6 +174,32 @@ TEST(FrameBoxes, ScanReturnsExactlyTheOverlappingBoxes) {
     EXPECT_LT(declined, needles / 2);     // the needles are looked up
     EXPECT_GT(wide_meets_needle, 12u);    // each wide triangle meets needles' boxes
     EXPECT_GT(answered_pairs, 12u);       // ... which the grid's answers for the needles include
+  }
+}
+
+
+TEST(FrameBoxes, CoarsenedGridReturnsExactlyTheOverlappingBoxes) {
+  const IntPoint dir{400000, -800000, 80000};
+  for (const std::int64_t origin : {std::int64_t{1000}, kCoordLimit - 2000000}) {
+    // Broad needles: each covers about six lattice columns each way, so a
+    // grid of one column per cell would mark each member ~40 times per query.
+    const Built b = build(needle_bundle(origin, dir, {600, 1, 600}));
+    const FrameBoxes frame(b.approx);
+    // Coarsened from 32 cells per axis until a polygon covers about 4.
+    EXPECT_LE(frame.grid_cells()[0], 8);
+    EXPECT_LE(frame.grid_cells()[1], 8);
+    FrameBoxes::Query query;
+    std::vector<std::uint32_t> got;
+    std::size_t answered = 0;
+    for (std::size_t i = 0; i < b.tris.size(); ++i) {
+      if (!frame.overlapping(i, query, got)) continue;  // none is wide on a coarse grid
+      ++answered;
+      std::vector<std::uint32_t> want;
+      for (std::uint32_t j = 0; j < b.tris.size(); ++j)
+        if (j != i && !frame.apart(i, j)) want.push_back(j);
+      ASSERT_EQ(got, want) << "polygon " << i;
+    }
+    EXPECT_EQ(answered, b.tris.size());
   }
 }
 

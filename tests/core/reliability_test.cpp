@@ -121,6 +121,21 @@ TEST(SolidReport, OpenPromisedAndUncheckedOperandsAreReported) {
   EXPECT_EQ(describe_solid_check(r.stats.operands[0]), "not solid: open (3 edges not matched by an opposite edge)");
 }
 
+TEST(Reliability, SelfIntersectionCountSaysWhenItIsALowerBound) {
+  OperandReport r;
+  r.solid = SolidStatus::SelfIntersecting;
+  r.self_intersecting_pairs = 7;
+  EXPECT_EQ(describe_solid_check(r), "not solid: self-intersecting (7 triangle pairs meet beyond a shared vertex or edge)");
+  r.self_intersecting_pairs_complete = false;  // the search stopped counting
+  EXPECT_EQ(describe_solid_check(r),
+            "not solid: self-intersecting (at least 7 triangle pairs meet beyond a shared vertex or edge)");
+  r.self_intersecting_pairs_complete = true;
+  r.self_intersecting_pairs = OperandReport::kMaxReportedPairs;  // the cap on pairs found
+  EXPECT_EQ(describe_solid_check(r), "not solid: self-intersecting (at least " +
+                                         std::to_string(OperandReport::kMaxReportedPairs) +
+                                         " triangle pairs meet beyond a shared vertex or edge)");
+}
+
 // ---- item 10: concave n-gons are triangulated exactly ---------------------------
 
 /// An L-shaped prism whose two caps are concave hexagons (one face each).

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <random>
 
@@ -111,7 +112,9 @@ TEST(Soup, LeafPlaneFilterSignsAgreeWithTheExactTest) {
         for (std::size_t v = 0; v < approx.size(); ++v) {
           const int s = filter.sign(approx[v]);
           const int exact = classify_exact(soup[i].poly->vertices[v], plane);
-          if (&soup[i] == &t) ASSERT_EQ(exact, 0);
+          if (&soup[i] == &t) {
+            ASSERT_EQ(exact, 0);
+          }
           if (s == LeafPlaneFilter::kUnsure) {
             ++unsure;
             continue;
@@ -123,6 +126,70 @@ TEST(Soup, LeafPlaneFilterSignsAgreeWithTheExactTest) {
     }
     EXPECT_GT(decided, 10 * unsure);  // the filter decides nearly all ...
     EXPECT_GE(unsure, soup.size() * 3);  // ... but never a polygon's own vertices
+  }
+}
+
+TEST(Soup, LeafPlaneFilterIsExactAtItsBound) {
+  // Vertices at distances around the filter's bound from a plane: triangles
+  // cut by the plane moved by 2^e bounds (e = -4 .. 4, either way), so that
+  // their cut vertices lie exactly that far from it. Some are decided, some
+  // are not; every decided sign is the exact one.
+  // (At small coordinates the bound is below one unit of d: no vertex of
+  // such a cut lies near it.)
+  for (const std::int64_t range : {std::int64_t{1} << 20, kCoordLimit}) {
+    std::mt19937_64 rng(static_cast<std::uint64_t>(range) + 7);
+    std::size_t decided = 0, unsure = 0;
+    for (int round = 0; round < 40; ++round) {
+      const std::array<IntPoint, 3> t = random_triangle(rng, range);
+      const Plane plane = *supporting_plane(t[0], t[1], t[2]);
+      const PlaneApprox approx(plane);
+      // The bound for vertices within `range` (the soup's max_abs is at most that).
+      const double bound = LeafPlaneFilter(approx, static_cast<double>(range)).bound;
+      Soup soup;
+      std::vector<Plane> moved_by;
+      for (int e = -4; e <= 4; ++e)
+        for (const int side : {-1, 1}) {
+          // The moved plane is P + delta: its points x have P(x) = -delta.
+          const auto delta = static_cast<__int128>(side * std::ldexp(bound, e));
+          const __int128 shifted = plane.d.raw() + delta, limit = __int128{1} << 79;
+          if (delta == 0 || shifted <= -limit || shifted >= limit) continue;  // beyond d's 79 bits
+          const Plane moved{plane.a, plane.b, plane.c, OffsetCoef(shifted)};
+          for (int tries = 0; tries < 20; ++tries) {
+            SoupPolygon p = unbuilt_triangle(random_triangle(rng, range), static_cast<std::uint32_t>(soup.size()), 0);
+            materialize(p);
+            Polygon neg, pos;
+            if (clip(*p.poly, moved, neg, pos) != ClipSide::Both) continue;
+            *p.poly = rng() % 2 ? pos : neg;
+            ++p.splits;
+            update_bounds(p);
+            soup.push_back(std::move(p));
+            moved_by.push_back(moved);
+            break;
+          }
+        }
+      SoupApprox flat;
+      approximate(soup, flat);
+      ASSERT_LE(flat.max_abs, static_cast<double>(range));
+      const LeafPlaneFilter filter(approx, flat.max_abs);
+      for (std::size_t i = 0; i < soup.size(); ++i) {
+        const auto f = flat.of(i);
+        for (std::size_t v = 0; v < f.size(); ++v) {
+          const Point& x = soup[i].poly->vertices[v];
+          if (classify_exact(x, moved_by[i]) != 0) continue;  // not a cut vertex
+          const int exact = classify_exact(x, plane);
+          ASSERT_NE(exact, 0);
+          const int s = filter.sign(f[v]);
+          if (s == LeafPlaneFilter::kUnsure) {
+            ++unsure;
+            continue;
+          }
+          ASSERT_EQ(s, exact) << "range " << range << ", round " << round << ", polygon " << i;
+          ++decided;
+        }
+      }
+    }
+    EXPECT_GT(decided, 100u) << range;
+    EXPECT_GT(unsure, 100u) << range;
   }
 }
 
