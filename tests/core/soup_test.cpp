@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <memory>
 #include <random>
 
@@ -147,6 +148,7 @@ TEST(Soup, LeafPlaneFilterIsExactAtItsBound) {
       const double bound = LeafPlaneFilter(approx, static_cast<double>(range)).bound;
       Soup soup;
       std::vector<Plane> moved_by;
+      std::deque<std::array<IntPoint, 3>> corners;  // unbuilt triangles point at their corners: stable addresses
       for (int e = -4; e <= 4; ++e)
         for (const int side : {-1, 1}) {
           // The moved plane is P + delta: its points x have P(x) = -delta.
@@ -155,7 +157,8 @@ TEST(Soup, LeafPlaneFilterIsExactAtItsBound) {
           if (delta == 0 || shifted <= -limit || shifted >= limit) continue;  // beyond d's 79 bits
           const Plane moved{plane.a, plane.b, plane.c, OffsetCoef(shifted)};
           for (int tries = 0; tries < 20; ++tries) {
-            SoupPolygon p = unbuilt_triangle(random_triangle(rng, range), static_cast<std::uint32_t>(soup.size()), 0);
+            corners.push_back(random_triangle(rng, range));
+            SoupPolygon p = unbuilt_triangle(corners.back(), static_cast<std::uint32_t>(soup.size()), 0);
             materialize(p);
             Polygon neg, pos;
             if (clip(*p.poly, moved, neg, pos) != ClipSide::Both) continue;
