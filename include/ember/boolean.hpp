@@ -172,6 +172,11 @@ inline BooleanResult boolean(std::initializer_list<Mesh> operands, Operation op,
 /// (3 triangle pairs meet ...)", ... (for warnings and reports).
 std::string describe_solid_check(const OperandReport& report);
 
+/// Whether report.self_intersecting_pairs is only a lower bound: the search
+/// stopped counting (self_intersecting_pairs_complete false) or the count
+/// reached kMaxReportedPairs. describe_solid_check then says "at least".
+bool self_intersection_count_is_lower_bound(const OperandReport& report);
+
 /// The indicator function of an operation over n operands.
 Indicator indicator_for(Operation op, std::size_t operands, int min_k = 1);
 

@@ -34,8 +34,7 @@ void print_stats(const BooleanResult& r, const char* operation, const std::vecto
     const OperandReport& o = s.operands[i];
     open_edges += o.open_edges;
     pairs += o.self_intersecting_pairs;
-    pairs_complete &= o.self_intersecting_pairs_complete &&
-                      o.self_intersecting_pairs < OperandReport::kMaxReportedPairs;
+    pairs_complete &= !self_intersection_count_is_lower_bound(o);
     misoriented += o.misoriented_components;
     if (!solid_check.empty()) solid_check += "; ";
     solid_check += (i < inputs.size() ? inputs[i] : "operand " + std::to_string(i)) + ": " + describe_solid_check(o);

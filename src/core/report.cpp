@@ -6,6 +6,10 @@
 
 namespace ember {
 
+bool self_intersection_count_is_lower_bound(const OperandReport& r) {
+  return !r.self_intersecting_pairs_complete || r.self_intersecting_pairs >= OperandReport::kMaxReportedPairs;
+}
+
 std::string describe_solid_check(const OperandReport& r) {
   switch (r.solid) {
     case SolidStatus::NotChecked: return "not checked";
@@ -14,9 +18,8 @@ std::string describe_solid_check(const OperandReport& r) {
     case SolidStatus::Open:
       return "not solid: open (" + std::to_string(r.open_edges) + " edges not matched by an opposite edge)";
     case SolidStatus::SelfIntersecting: {
-      const bool capped =
-          r.self_intersecting_pairs >= OperandReport::kMaxReportedPairs || !r.self_intersecting_pairs_complete;
-      return "not solid: self-intersecting (" + std::string(capped ? "at least " : "") +
+      return "not solid: self-intersecting (" +
+             std::string(self_intersection_count_is_lower_bound(r) ? "at least " : "") +
              std::to_string(r.self_intersecting_pairs) +
              " triangle pairs meet beyond a shared vertex or edge)";
     }

@@ -177,7 +177,6 @@ TEST(FrameBoxes, ScanReturnsExactlyTheOverlappingBoxes) {
   }
 }
 
-
 TEST(FrameBoxes, CoarsenedGridReturnsExactlyTheOverlappingBoxes) {
   const IntPoint dir{400000, -800000, 80000};
   for (const std::int64_t origin : {std::int64_t{1000}, kCoordLimit - 2000000}) {
