@@ -130,6 +130,12 @@ struct BooleanStats {
   std::size_t merged_triangles = 0;
   /// The solid path solved it (BooleanOptions::solid_path): every operand solid.
   bool solid_path = false;
+  /// The solid path made the triangle mesh straight from the intersection
+  /// curve (two operands meeting in general position, triangle output), with
+  /// no mesh stage: tjunctions_resolved and collinear_removed are 0 then,
+  /// `regions` counts the kept faces of cut triangles, and the mesh stage's
+  /// times are 0 but for triangulate_ms (its assembly).
+  bool direct_mesh = false;
   std::size_t output_vertices = 0;
   /// Mesh stage (Output::Triangles): vertices inserted into edges they lay
   /// on, boundary vertices removed as merely collinear, merged regions, and

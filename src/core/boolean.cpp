@@ -18,6 +18,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/direct_mesh.hpp"
 #include "core/grid_input.hpp"
 #include "core/input_soup.hpp"
 #include "core/indicator.hpp"
@@ -32,6 +33,13 @@
 namespace ember {
 
 namespace {
+
+/// What the solid path made: the result's mesh (the direct route), or its
+/// pieces for the mesh stage; neither if it declined or was abandoned.
+struct SolidRoute {
+  std::optional<core::MeshOutput> mesh;
+  std::optional<std::vector<core::OutputPolygon>> polys;
+};
 
 double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
@@ -205,6 +213,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   const std::span<const Provenance> sources = in.sources;
 
   std::vector<core::OutputPolygon> polys;
+  std::optional<core::MeshOutput> direct_mesh;  // the solid path's direct route, when it applies
   const auto setup_done = std::chrono::steady_clock::now();
   result.stats.setup_ms = ms_between(start, setup_done);
   auto proved = setup_done;
@@ -249,7 +258,24 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     // independent tasks keep the threads busier than either alone. Same
     // inputs as after the proof, so the same result; a failed proof abandons
     // the run (solve_solid's `abandon`) and the general path solves as before.
-    std::optional<std::vector<core::OutputPolygon>> speculative;
+    // The solid path, all operands solid: with two operands that meet in
+    // general position, the result's mesh straight from the intersection
+    // curve (direct_mesh.hpp); otherwise its pieces, for the mesh stage.
+    if (topology) topology->by_triangle = grid.vertex_ids;
+    const bool direct_allowed = topology && operands.size() == 2 && options.output == BooleanOptions::Output::Triangles;
+    const auto solid_route = [&](const core::SolveContext& c, const std::atomic<bool>* abandon) {
+      SolidRoute route;
+      const std::atomic<bool> never{false};
+      const std::atomic<bool>& stop = abandon ? *abandon : never;
+      const core::Partners partners = core::find_partners(grid, *trees, root.soup.size(), stop);
+      if (stop.load()) return route;
+      if (direct_allowed)
+        route.mesh = core::direct_solid_mesh(root.soup, grid, root.box, c, *trees, partners, q, sources, *topology, stop);
+      if (!route.mesh && !stop.load())
+        route.polys = core::solve_solid(root.soup, grid, root.box, c, *trees, abandon, &partners);
+      return route;
+    };
+    SolidRoute speculative;
     bool speculated = false;
     if (options.detect_solid) {
       // Closed operands not promised solid are proven solid (or not) exactly,
@@ -277,7 +303,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
           premise.solid.assign(operands.size(), 1);
           arena.execute([&] {
             tbb::parallel_invoke(prove, [&] {
-              speculative = core::solve_solid(root.soup, grid, root.box, premise, *trees, &disproved);
+              speculative = solid_route(premise, &disproved);
             });
           });
         } else {
@@ -299,10 +325,15 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       const bool all_solid = std::all_of(ctx.solid.begin(), ctx.solid.end(), [](char s) { return s != 0; });
       if (!all_solid) trees.reset();  // the subdivision does not use them
       if (trees) {
-        if (std::optional<std::vector<core::OutputPolygon>> direct =
-                speculated ? std::move(speculative) : core::solve_solid(root.soup, grid, root.box, ctx, *trees)) {
-          polys = std::move(*direct);
-          result.stats.solid_path = true;
+        SolidRoute route = speculated ? std::move(speculative) : solid_route(ctx, nullptr);
+        result.stats.solid_path = route.mesh || route.polys;
+        if (route.mesh) {
+          direct_mesh = std::move(route.mesh);
+          result.stats.direct_mesh = true;
+          return;
+        }
+        if (route.polys) {
+          polys = std::move(*route.polys);
           return;
         }
       }
@@ -319,11 +350,15 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     arena.execute([&] { result.mesh = export_mesh(polys, q, sources, result.provenance, result.stats.dropped_slivers); });
   } else {
     core::MeshOutput m;
-    if (topology) {
-      topology->by_triangle = grid.vertex_ids;
-      topology->manifold_edges = grid.manifold_edges;
+    if (direct_mesh) {
+      m = std::move(*direct_mesh);
+    } else {
+      if (topology) {
+        topology->by_triangle = grid.vertex_ids;
+        topology->manifold_edges = grid.manifold_edges;
+      }
+      arena.execute([&] { m = core::build_triangle_mesh(polys, q, sources, topology ? &*topology : nullptr); });
     }
-    arena.execute([&] { m = core::build_triangle_mesh(polys, q, sources, topology ? &*topology : nullptr); });
     result.mesh = std::move(m.mesh);
     result.provenance = std::move(m.provenance);
     result.stats.tjunctions_resolved = m.stats.tjunctions;

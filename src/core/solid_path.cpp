@@ -24,14 +24,6 @@ namespace ember::core {
 
 namespace {
 
-/// The meeting pairs, both ways, grouped by triangle: partners of id are
-/// ids[begin[id] .. begin[id + 1]), ascending.
-struct Partners {
-  std::vector<std::uint32_t> begin, ids;
-  bool touched(std::uint32_t id) const { return begin[id + 1] > begin[id]; }
-  std::span<const std::uint32_t> of(std::uint32_t id) const { return {ids.data() + begin[id], begin[id + 1] - begin[id]}; }
-};
-
 /// A box's largest side (grid units): which of two triangles is the larger.
 std::int32_t extent(const Box32& b) {
   return std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
@@ -131,9 +123,8 @@ void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32
   }
 }
 
-/// Broad and narrow phase: the meeting pairs of triangles of different
-/// operands. Deterministic (sorted), whatever the schedule; incomplete (and
-/// not to be used) once `stop` is set.
+}  // namespace
+
 Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std::size_t n,
                        const std::atomic<bool>& stop) {
   PairSink sink;
@@ -167,6 +158,8 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
   });
   return p;
 }
+
+namespace {
 
 /// The output form of t whole (unbuilt), or of one of its pieces.
 OutputPolygon output_of(const SoupPolygon& t, const Polygon* piece, bool flip) {
@@ -503,16 +496,26 @@ std::optional<std::vector<std::uint32_t>> operand_ranges(const Soup& soup, std::
 
 std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const GridTriangles& grid, const Box& box,
                                                       const SolveContext& ctx, const OperandTrees& trees,
-                                                      const std::atomic<bool>* abandon) {
+                                                      const std::atomic<bool>* abandon, const Partners* found) {
   const std::atomic<bool> never{false};
   const std::atomic<bool>& stop = abandon ? *abandon : never;
   // 1. Which triangles another operand's triangles meet, and which.
-  const Partners partners = find_partners(grid, trees, soup.size(), stop);
+  std::optional<Partners> own;
+  if (!found) own = find_partners(grid, trees, soup.size(), stop);
+  const Partners& partners = found ? *found : *own;
   if (stop.load()) return std::nullopt;
   SolidSolver solver(soup, grid, box, ctx, trees, partners, stop);
   std::vector<std::vector<OutputPolygon>> touched_out;
   if (!solver.classify_components() || !solver.solve_touched(touched_out)) return std::nullopt;
   return solver.output(std::move(touched_out));
+}
+
+std::optional<std::vector<OutputPolygon>> solid_untouched(const Soup& soup, const GridTriangles& grid, const Box& box,
+                                                          const SolveContext& ctx, const OperandTrees& trees,
+                                                          const Partners& partners, const std::atomic<bool>& stop) {
+  SolidSolver solver(soup, grid, box, ctx, trees, partners, stop);
+  if (!solver.classify_components()) return std::nullopt;
+  return solver.output({});
 }
 
 }  // namespace ember::core

@@ -36,6 +36,7 @@
 // cuts), so the mesh stage makes the same surfaces.
 #include <atomic>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "core/solid_check.hpp"
@@ -43,6 +44,21 @@
 #include "core/triangle_tree.hpp"
 
 namespace ember::core {
+
+/// The meeting pairs of triangles of different operands (step 1), both
+/// ways, grouped by triangle: partners of id are ids[begin[id] ..
+/// begin[id + 1]), ascending.
+struct Partners {
+  std::vector<std::uint32_t> begin, ids;
+  bool touched(std::uint32_t id) const { return begin[id + 1] > begin[id]; }
+  std::span<const std::uint32_t> of(std::uint32_t id) const { return {ids.data() + begin[id], begin[id + 1] - begin[id]}; }
+};
+
+/// Broad and narrow phase: the meeting pairs of the n triangles (ids) of
+/// `trees`' operands. Deterministic (sorted), whatever the schedule;
+/// incomplete (and not to be used) once `stop` is set.
+Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std::size_t n,
+                       const std::atomic<bool>& stop);
 
 /// The Boolean of the root soup (polygon i has id i, grid.corners[i] its
 /// corners; every operand solid in `ctx`; `trees` its operands' triangle
@@ -53,9 +69,19 @@ namespace ember::core {
 /// then solves on the subdivision instead), or if `abandon` was set: a run
 /// started before the proof of its premise ended stops early once the proof
 /// fails (boolean.cpp), checking the flag between steps and within them.
+/// `partners`, if given, are step 1's, already found (find_partners).
 std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const GridTriangles& grid, const Box& box,
                                                       const SolveContext& ctx, const OperandTrees& trees,
-                                                      const std::atomic<bool>* abandon = nullptr);
+                                                      const std::atomic<bool>* abandon = nullptr,
+                                                      const Partners* partners = nullptr);
+
+/// Steps 2 and 4 alone: the untouched triangles on the result's surface
+/// (unbuilt, by id; `settled` as in solve_solid), classified by one trace
+/// per component. nullopt if a trace failed or `stop` was set. The direct
+/// route (direct_mesh.hpp) cuts the touched triangles itself.
+std::optional<std::vector<OutputPolygon>> solid_untouched(const Soup& soup, const GridTriangles& grid, const Box& box,
+                                                          const SolveContext& ctx, const OperandTrees& trees,
+                                                          const Partners& partners, const std::atomic<bool>& stop);
 
 /// Operand o's polygons of the root soup are [begin[o], begin[o + 1]);
 /// nullopt if the soup does not list the operands in order.

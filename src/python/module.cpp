@@ -110,6 +110,7 @@ py::dict stats_dict(const ember::BooleanStats& s) {
   d["solid_operands"] = s.solid_operands;
   d["merged_triangles"] = s.merged_triangles;
   d["solid_path"] = s.solid_path;
+  d["direct_mesh"] = s.direct_mesh;
   d["output_vertices"] = s.output_vertices;
   d["tjunctions_resolved"] = s.tjunctions_resolved;
   d["collinear_removed"] = s.collinear_removed;

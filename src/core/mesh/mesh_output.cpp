@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <numeric>
 #include <optional>
 
@@ -51,6 +52,63 @@ bool rounded_area_is_zero(const std::vector<Vec3d>& pos, std::span<const std::ui
   return n[0] == 0 && n[1] == 0 && n[2] == 0;
 }
 
+void write_indexed_mesh(std::span<const std::array<std::uint32_t, 3>> tris, std::size_t vertex_count,
+                        const std::function<Vec3d(std::uint32_t)>& position, std::size_t whole_count, Mesh& mesh,
+                        std::size_t& rounded_degenerate) {
+  const std::size_t total = tris.size();
+  // A vertex's number is the rank of its first use among all first uses
+  // (3 * triangle + corner): flag the corners that are one, then a prefix
+  // count along the corners, all in parallel, as a serial pass would number them.
+  std::vector<std::uint64_t> first_use(vertex_count, UINT64_MAX);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 1024), [&](const auto& range) {
+    for (std::size_t t = range.begin(); t != range.end(); ++t)
+      for (int c = 0; c < 3; ++c) atomic_min(first_use[tris[t][c]], 3 * t + static_cast<std::uint64_t>(c));
+  });
+  const std::size_t corners = 3 * total;
+  FillVector<std::uint32_t> rank(corners + 1);  // flag, then the exclusive prefix count; every entry written
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, corners, 4096), [&](const auto& range) {
+    for (std::size_t c = range.begin(); c != range.end(); ++c) rank[c] = first_use[tris[c / 3][c % 3]] == c;
+  });
+  rank[corners] = 0;
+  const std::uint32_t vertices = tbb::parallel_scan(
+      tbb::blocked_range<std::size_t>(0, corners + 1, 4096), std::uint32_t{0},
+      [&](const tbb::blocked_range<std::size_t>& range, std::uint32_t sum, bool final) {
+        for (std::size_t c = range.begin(); c != range.end(); ++c) {
+          const std::uint32_t flag = rank[c];
+          if (final) rank[c] = sum;
+          sum += flag;
+        }
+        return sum;
+      },
+      [](std::uint32_t a, std::uint32_t b) { return a + b; });
+  const auto remap = [&](std::uint32_t v) { return rank[first_use[v]]; };
+  mesh.vertices.resize(vertices);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, first_use.size(), 4096), [&](const auto& range) {
+    for (std::size_t v = range.begin(); v != range.end(); ++v)
+      if (first_use[v] != UINT64_MAX) mesh.vertices[rank[first_use[v]]] = position(static_cast<std::uint32_t>(v));
+  });
+  mesh.indices.resize(3 * total);
+  mesh.face_offsets.resize(total + 1);
+  std::atomic<std::size_t> degenerate{0};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 1024), [&](const auto& range) {
+    std::size_t local = 0;
+    for (std::size_t t = range.begin(); t != range.end(); ++t) {
+      for (int c = 0; c < 3; ++c) mesh.indices[3 * t + static_cast<std::size_t>(c)] = remap(tris[t][c]);
+      mesh.face_offsets[t + 1] = static_cast<std::uint32_t>(3 * (t + 1));
+      // A whole input triangle has area; rounded exactly, its area vector
+      // is its grid normal times 2^-2k, which the extended sum below forms
+      // exactly (grid differences <= 2^26, products <= 2^52).
+      static_assert(kCoordLimit <= (std::int64_t{1} << 25) && 2 * 26 < 64,
+                    "whole-triangle area: grid differences <= 2^26, products <= 2^52, exact in long double");
+      if (t < whole_count) continue;
+      local += rounded_area_is_zero(mesh.vertices, std::span<const std::uint32_t>(mesh.indices.data() + 3 * t, 3));
+    }
+    degenerate += local;
+  });
+  mesh.face_offsets[0] = 0;
+  rounded_degenerate = degenerate;
+}
+
 namespace {
 
 /// The pass-through triangles in polygon order (most of a lightly touched
@@ -79,19 +137,16 @@ void collect_direct(std::span<const OutputPolygon> polys, const Cycles& cycles, 
   });
 }
 
-/// The indexed mesh: the pass-through triangles (`direct`, in polygon order),
-/// then the regions' triangles in region order (a region in
+/// The triangles in output order: the pass-through triangles (`direct`, in
+/// polygon order), then the regions' triangles in region order (a region in
 /// `override_regions` takes its triangles from `overrides` instead of its
-/// slot: piece-by-piece fallbacks and regions whose diagonals were split). Vertices are numbered by
-/// first use, as a serial pass would number them, but computed in parallel:
-/// each vertex's first use is the smallest corner position using it.
-/// `direct_exact`: the direct triangles' rounded corners are exact
-/// (Quantizer::grid_points_exact), so none of them can round to zero area.
-void assemble(const RegionTriangles& direct, bool direct_exact, const Regions& regions,
+/// slot: piece-by-piece fallbacks and regions whose diagonals were split),
+/// each with its provenance.
+void assemble(const RegionTriangles& direct, const Regions& regions,
               const std::vector<std::array<std::uint32_t, 3>>& slots, const std::vector<std::size_t>& slot,
               const std::vector<std::uint32_t>& count, const std::vector<std::uint32_t>& override_regions,
-              const std::vector<RegionTriangles>& overrides, const OutputVertices& verts,
-              std::span<const Provenance> sources, MeshOutput& out) {
+              const std::vector<RegionTriangles>& overrides, std::span<const Provenance> sources,
+              FillVector<std::array<std::uint32_t, 3>>& tris, std::vector<Provenance>& provenance) {
   const std::size_t n_regions = regions.regions.size();
   std::vector<std::uint32_t> override_of(n_regions, UINT32_MAX);
   for (std::uint32_t i = 0; i < override_regions.size(); ++i) override_of[override_regions[i]] = i;
@@ -99,17 +154,12 @@ void assemble(const RegionTriangles& direct, bool direct_exact, const Regions& r
   for (std::size_t r = 0; r < n_regions; ++r)
     first[r + 1] = first[r] + (override_of[r] != UINT32_MAX ? overrides[override_of[r]].tris.size() : count[r]);
   const std::size_t total = first[n_regions];
-  FillVector<std::array<std::uint32_t, 3>> tris(total);  // every triangle written below
-  out.provenance.resize(total);
-  std::vector<std::uint64_t> first_use(verts.exact.size(), UINT64_MAX);
-  const auto note_use = [&](std::size_t t) {
-    for (int c = 0; c < 3; ++c) atomic_min(first_use[tris[t][c]], 3 * t + static_cast<std::uint64_t>(c));
-  };
+  tris.resize(total);  // every triangle written below
+  provenance.resize(total);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, direct.tris.size(), 1024), [&](const auto& range) {
     for (std::size_t t = range.begin(); t != range.end(); ++t) {
       tris[t] = direct.tris[t];
-      out.provenance[t] = sources[direct.source[t]];
-      note_use(t);
+      provenance[t] = sources[direct.source[t]];
     }
   });
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_regions, 256), [&](const auto& range) {
@@ -118,62 +168,14 @@ void assemble(const RegionTriangles& direct, bool direct_exact, const Regions& r
         const std::size_t t = first[r] + i;
         if (override_of[r] != UINT32_MAX) {
           tris[t] = overrides[override_of[r]].tris[i];
-          out.provenance[t] = sources[overrides[override_of[r]].source[i]];
+          provenance[t] = sources[overrides[override_of[r]].source[i]];
         } else {
           tris[t] = slots[slot[r] + i];
-          out.provenance[t] = sources[regions.regions[r].source];
+          provenance[t] = sources[regions.regions[r].source];
         }
-        note_use(t);
       }
     }
   });
-  // A vertex's number is the rank of its first use among all first uses:
-  // flag the corners that are one, then a prefix count along the corners (in
-  // parallel; it was a serial collection and a sort of the used vertices).
-  const std::size_t corners = 3 * total;
-  FillVector<std::uint32_t> rank(corners + 1);  // flag, then the exclusive prefix count; every entry written
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, corners, 4096), [&](const auto& range) {
-    for (std::size_t c = range.begin(); c != range.end(); ++c) rank[c] = first_use[tris[c / 3][c % 3]] == c;
-  });
-  rank[corners] = 0;
-  const std::uint32_t vertices = tbb::parallel_scan(
-      tbb::blocked_range<std::size_t>(0, corners + 1, 4096), std::uint32_t{0},
-      [&](const tbb::blocked_range<std::size_t>& range, std::uint32_t sum, bool final) {
-        for (std::size_t c = range.begin(); c != range.end(); ++c) {
-          const std::uint32_t flag = rank[c];
-          if (final) rank[c] = sum;
-          sum += flag;
-        }
-        return sum;
-      },
-      [](std::uint32_t a, std::uint32_t b) { return a + b; });
-  const auto remap = [&](std::uint32_t v) { return rank[first_use[v]]; };
-  Mesh& mesh = out.mesh;
-  mesh.vertices.resize(vertices);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, first_use.size(), 4096), [&](const auto& range) {
-    for (std::size_t v = range.begin(); v != range.end(); ++v)
-      if (first_use[v] != UINT64_MAX) mesh.vertices[rank[first_use[v]]] = verts.rounded[v];
-  });
-  mesh.indices.resize(3 * total);
-  mesh.face_offsets.resize(total + 1);
-  std::atomic<std::size_t> degenerate{0};
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 1024), [&](const auto& range) {
-    std::size_t local = 0;
-    for (std::size_t t = range.begin(); t != range.end(); ++t) {
-      for (int c = 0; c < 3; ++c) mesh.indices[3 * t + static_cast<std::size_t>(c)] = remap(tris[t][c]);
-      mesh.face_offsets[t + 1] = static_cast<std::uint32_t>(3 * (t + 1));
-      // A whole input triangle (every direct one) has area; rounded exactly,
-      // its area vector is its grid normal times 2^-2k, which the extended
-      // sum below forms exactly (grid differences <= 2^26, products <= 2^52).
-      static_assert(kCoordLimit <= (std::int64_t{1} << 25) && 2 * 26 < 64,
-                    "whole-triangle area: grid differences <= 2^26, products <= 2^52, exact in long double");
-      if (direct_exact && t < direct.tris.size()) continue;
-      local += rounded_area_is_zero(mesh.vertices, std::span<const std::uint32_t>(mesh.indices.data() + 3 * t, 3));
-    }
-    degenerate += local;
-  });
-  mesh.face_offsets[0] = 0;
-  out.stats.rounded_degenerate = degenerate;
 }
 
 }  // namespace
@@ -301,7 +303,12 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
       overrides.back().source.assign(overrides.back().tris.size(), regions.regions[r].source);
     }
   }
-  assemble(direct, q.grid_points_exact(), regions, slots, slot, count, override_regions, overrides, verts, sources, out);
+  FillVector<std::array<std::uint32_t, 3>> tris;
+  assemble(direct, regions, slots, slot, count, override_regions, overrides, sources, tris, out.provenance);
+  // The direct triangles' rounded corners are exact when grid points are
+  // (Quantizer::grid_points_exact): none of them can round to zero area.
+  write_indexed_mesh(tris, verts.exact.size(), [&](std::uint32_t v) { return verts.rounded[v]; },
+                     q.grid_points_exact() ? direct.tris.size() : 0, out.mesh, out.stats.rounded_degenerate);
   out.stats.triangulate_ms = ms_since(clock);
   return out;
 }

@@ -20,6 +20,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -195,6 +196,23 @@ bool triangulate_region(const Regions& regions, std::uint32_t region, const Outp
 bool triangulate_loop(std::vector<std::uint32_t> loop, const Plane& plane, const OutputVertices& verts,
                       std::vector<std::array<std::uint32_t, 3>>& out);
 
+/// Ear-clips a polygon with holes: `outer` counter-clockwise around `plane`,
+/// each hole clockwise, joined to it by bridges first. False if a bridge or
+/// an ear cannot be found.
+bool triangulate_with_holes(std::vector<std::uint32_t> outer, std::vector<std::vector<std::uint32_t>> holes,
+                            const Plane& plane, const OutputVertices& verts,
+                            std::vector<std::array<std::uint32_t, 3>>& out);
+
+/// +1 if the loop runs counter-clockwise around `plane`, -1 clockwise, 0 if
+/// its turn at its lexicographically smallest vertex is straight.
+int loop_orientation_in_plane(const std::vector<std::uint32_t>& loop, const Plane& plane, const OutputVertices& verts);
+
+/// Whether vertex x (on `plane`) lies inside the loop (1), outside (0) or
+/// on it (-1), exactly: a ray's crossings in the projection along the
+/// plane's dominant axis.
+int locate_in_loop(const std::vector<std::uint32_t>& loop, std::uint32_t x, const Plane& plane,
+                   const OutputVertices& verts);
+
 /// Step 5b for one region's triangles (a triangulation of a plane region):
 /// every vertex that some output triangle uses (`used`, per vertex id) and
 /// that lies strictly inside a diagonal (an edge two of the triangles share)
@@ -209,6 +227,17 @@ std::size_t split_diagonals(const Plane& plane, const OutputVertices& verts, con
 /// differences to its first vertex in extended precision, is exactly zero.
 /// Shared by the mesh stage (rounded_degenerate) and the polygon export (slivers).
 bool rounded_area_is_zero(const std::vector<Vec3d>& pos, std::span<const std::uint32_t> face);
+
+/// The indexed mesh of `tris` (vertex ids below vertex_count): vertices
+/// numbered by first use (as a serial pass along the triangles would, in
+/// parallel), each placed at position(id); the triangles from `whole_count`
+/// on (the first ones are whole input triangles, whose rounded area is
+/// known) are counted in `rounded_degenerate` when their rounded corners
+/// have zero area. Shared by the mesh stage and the direct route
+/// (direct_mesh.hpp).
+void write_indexed_mesh(std::span<const std::array<std::uint32_t, 3>> tris, std::size_t vertex_count,
+                        const std::function<Vec3d(std::uint32_t)>& position, std::size_t whole_count, Mesh& mesh,
+                        std::size_t& rounded_degenerate);
 
 struct MeshOutputStats {
   std::size_t tjunctions = 0;          ///< vertices inserted into edges

@@ -286,6 +286,13 @@ bool triangulate_region(const Regions& regions, std::uint32_t region, const Outp
     }
   }
   if (outer.empty()) return false;
+  return triangulate_with_holes(std::move(outer), std::move(holes), plane, verts, out);
+}
+
+bool triangulate_with_holes(std::vector<std::uint32_t> outer, std::vector<std::vector<std::uint32_t>> holes,
+                            const Plane& plane, const OutputVertices& verts,
+                            std::vector<std::array<std::uint32_t, 3>>& out) {
+  const Ctx k{verts, plane};
   // Holes in decreasing order of their lexicographically largest vertex (the
   // order of Eberly's hole bridging): the ray from that vertex in the
   // direction of the order meets only the outer loop and holes already
@@ -310,6 +317,32 @@ bool triangulate_region(const Regions& regions, std::uint32_t region, const Outp
     if (!bridge_hole(k, outer, holes[i], rest)) return false;
   }
   return triangulate_loop(std::move(outer), plane, verts, out);
+}
+
+int loop_orientation_in_plane(const std::vector<std::uint32_t>& loop, const Plane& plane, const OutputVertices& verts) {
+  return loop_orientation(Ctx{verts, plane}, loop);
+}
+
+int locate_in_loop(const std::vector<std::uint32_t>& loop, std::uint32_t x, const Plane& plane,
+                   const OutputVertices& verts) {
+  // Crossings of the ray from x along +u in the projection along the
+  // plane's dominant axis (one-to-one on the plane), half-open in v.
+  const int drop = dominant_axis(plane), u = (drop + 1) % 3, v = (drop + 2) % 3;
+  const Point& p = verts.exact[x];
+  bool inside = false;
+  for (std::size_t i = 0, n = loop.size(); i < n; ++i) {
+    const Point &a = verts.exact[loop[i]], &b = verts.exact[loop[(i + 1) % n]];
+    const int va = compare_coord(a, p, v), vb = compare_coord(b, p, v);
+    if (va * vb > 0) continue;  // both above or both below x
+    const int o = orient2d_dropped(a, b, p, drop);
+    if (o == 0 && va * vb <= 0 && compare_coord(a, p, u) * compare_coord(b, p, u) <= 0) return -1;  // on the edge
+    const bool a_above = va > 0, b_above = vb > 0;
+    if (a_above == b_above) continue;
+    // The edge crosses the line through x: to the right of x iff x is left
+    // of an upward edge or right of a downward one.
+    if (b_above ? o > 0 : o < 0) inside = !inside;
+  }
+  return inside ? 1 : 0;
 }
 
 }  // namespace ember::core
