@@ -1,6 +1,8 @@
 // The direct route of the solid path (see direct_mesh.hpp for the argument).
 #include "core/direct_mesh.hpp"
 
+#include "core/direct_faces.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -10,379 +12,6 @@
 #include <tuple>
 
 namespace ember::core {
-
-namespace {
-
-using i128 = __int128;
-
-int sign_of(i128 v) { return (v > 0) - (v < 0); }
-
-/// orient3d of grid points: ((b - a) x (c - a)) . (d - a), exactly.
-/// Differences are below 2^26, the cross product's components below 2^53
-/// (int64) and the sum of three products below 2^81 (__int128).
-i128 orient3d(const IntPoint& a, const IntPoint& b, const IntPoint& c, const IntPoint& d) {
-  static_assert(kCoordLimit <= (std::int64_t{1} << 25), "orient3d: differences < 2^26, cross < 2^53, dot < 2^81");
-  const std::int64_t bx = b.x - a.x, by = b.y - a.y, bz = b.z - a.z;
-  const std::int64_t cx = c.x - a.x, cy = c.y - a.y, cz = c.z - a.z;
-  return i128{by * cz - bz * cy} * (d.x - a.x) + i128{bz * cx - bx * cz} * (d.y - a.y) +
-         i128{bx * cy - by * cx} * (d.z - a.z);
-}
-
-/// A point where an edge of one operand crosses the interior of a triangle
-/// of the other: the edge's welded vertex ids (smaller first) and the
-/// crossed triangle's id.
-struct Name {
-  std::uint64_t edge = 0;
-  std::uint32_t face = 0;
-  friend auto operator<=>(const Name&, const Name&) = default;
-};
-
-/// The point of segment a -> b where it crosses a plane that a and b lie on
-/// opposite sides of (side values sa, sb from grid_side, nonzero, |s| <
-/// 2^82): (a * -sb + b * sa) / (sa - sb), with w > 0. Coordinates below
-/// 2^83 * 2^26 * 2 = 2^110 and w below 2^83: well inside Point's bounds.
-Point crossing_point(const IntPoint& a, const IntPoint& b, i128 sa, i128 sb) {
-  static_assert(PointXYZ::bits >= 110 && PointW::bits >= 84, "crossing points fit Point");
-  Int<83> ka(-sb), kb(sa);
-  Int<84> w(sa - sb);
-  if (w.negative()) ka = -ka, kb = -kb, w = -w;
-  Point p;
-  p.x = ka * Int<26>(a.x) + kb * Int<26>(b.x);
-  p.y = ka * Int<26>(a.y) + kb * Int<26>(b.y);
-  p.z = ka * Int<26>(a.z) + kb * Int<26>(b.z);
-  p.w = w;
-  detail::cache_approx(p);
-  return p;
-}
-
-/// A crossing point of one touched triangle, local to it.
-struct Crossing {
-  Name name;
-  Point point;
-  int edge = -1;     ///< the triangle's own edge it lies on, or -1 inside the triangle
-  i128 sa = 0, sb = 0;  ///< on an edge: the sides of its end points against the crossed plane
-  int next = -1, prev = -1;  ///< chords: the crossing the curve runs on to / came from (local index)
-};
-
-/// Where a touched triangle's work goes: per block of touched triangles,
-/// their kept faces' triangles (corner refs: 0-2 the source triangle's
-/// corners, 3 + i the block's crossing i), sources and crossings.
-struct Block {
-  std::vector<Name> names;
-  std::vector<Point> points;
-  std::vector<std::array<std::uint32_t, 3>> tris;
-  std::vector<std::uint32_t> source;
-  std::size_t faces = 0;
-};
-
-/// One touched triangle cut by its partners into faces; the kept faces'
-/// triangles appended to a Block.
-class TriangleCutter {
- public:
-  TriangleCutter(const GridTriangles& grid, const InputTopology& topology, const SolveContext& ctx,
-                 const std::vector<std::uint32_t>& operand_of)
-      : grid_(grid), topo_(topology), ctx_(ctx), operand_of_(operand_of) {
-    front_.resize(2);
-    back_.resize(2);
-    local_.exact.resize(3);
-  }
-
-  /// False if the triangle is not in general position with its partners
-  /// (or a curve closes inside it, or a face cannot be ear-clipped).
-  bool cut(std::uint32_t id, std::span<const std::uint32_t> partners, Block& out) {
-    cross_.clear();
-    const std::array<IntPoint, 3>& c = grid_.corners[id];
-    const std::array<std::int64_t, 3> n = grid_normal(c[0], c[1], c[2]);
-    for (const std::uint32_t f : partners)
-      if (!add_chord(id, c, n, f)) return false;
-    for (const Crossing& x : cross_)
-      if (x.edge >= 0 ? (x.next < 0) == (x.prev < 0) : (x.next < 0 || x.prev < 0)) return false;
-    return walk_faces(id, c, out);
-  }
-
- private:
-  std::uint32_t vertex(std::uint32_t t, int k) const {
-    return topo_.operand_base[operand_of_[t]] + topo_.by_triangle[t][static_cast<std::size_t>(k)];
-  }
-  std::uint64_t edge_key(std::uint32_t t, int k) const {
-    const std::uint64_t u = vertex(t, k), v = vertex(t, k == 2 ? 0 : k + 1);
-    return std::min(u, v) << 32 | std::max(u, v);
-  }
-  int find_or_add(const Name& name) {
-    for (std::size_t i = 0; i < cross_.size(); ++i)
-      if (cross_[i].name == name) return static_cast<int>(i);
-    cross_.emplace_back();
-    cross_.back().name = name;
-    return static_cast<int>(cross_.size() - 1);
-  }
-
-  /// The chord of t (id, corners c, normal n) and partner f: its two end
-  /// points, linked in the direction d = n_t x n_f (inside of f's solid on
-  /// the left, seen from t's front).
-  bool add_chord(std::uint32_t id, const std::array<IntPoint, 3>& c, const std::array<std::int64_t, 3>& n,
-                 std::uint32_t f) {
-    const std::array<IntPoint, 3>& d = grid_.corners[f];
-    const std::array<std::int64_t, 3> nf = grid_normal(d[0], d[1], d[2]);
-    i128 st[3], sf[3];  // t's corners against f's plane, f's against t's
-    for (int i = 0; i < 3; ++i) {
-      st[i] = grid_side(d[0], nf, c[i]);
-      sf[i] = grid_side(c[0], n, d[i]);
-      if (st[i] == 0 || sf[i] == 0) return false;  // a corner on the other's plane
-    }
-    int ends[2], found = 0;
-    bool leaves_along_d[2];
-    // An edge p -> q of one triangle that crosses the other's plane crosses
-    // the other triangle's interior iff it turns the same way around all of
-    // its edges (orient3d); a zero means it meets an edge's line there.
-    const auto crossing = [&](const IntPoint& p, const IntPoint& q, const std::array<IntPoint, 3>& other, int& inside) {
-      const int o0 = sign_of(orient3d(p, q, other[0], other[1])), o1 = sign_of(orient3d(p, q, other[1], other[2])),
-                o2 = sign_of(orient3d(p, q, other[2], other[0]));
-      if (o0 == 0 || o1 == 0 || o2 == 0) return false;
-      inside = o0 == o1 && o1 == o2;
-      return true;
-    };
-    // The end points on t's edges (crossing f), then on f's (crossing t).
-    // d = n_t x n_f points into t from t's edge i -> j iff n_f . (c_j - c_i)
-    // > 0, and into f from f's edge i -> j iff n_t . (d_j - d_i) < 0.
-    for (const bool on_t : {true, false}) {
-      const std::array<IntPoint, 3>& e = on_t ? c : d;
-      const i128* s = on_t ? st : sf;
-      for (int i = 0; i < 3; ++i) {
-        const int j = i == 2 ? 0 : i + 1;
-        if ((s[i] > 0) == (s[j] > 0)) continue;
-        int inside = 0;
-        if (!crossing(e[i], e[j], on_t ? d : c, inside)) return false;
-        if (!inside) continue;
-        if (found == 2) return false;
-        const int x = find_or_add(on_t ? Name{edge_key(id, i), f} : Name{edge_key(f, i), id});
-        cross_[x].point = crossing_point(e[i], e[j], s[i], s[j]);
-        if (on_t) cross_[x].edge = i, cross_[x].sa = s[i], cross_[x].sb = s[j];
-        leaves_along_d[found] = on_t ? s[j] > 0 : s[j] < 0;
-        ends[found++] = x;
-      }
-    }
-    if (found != 2 || leaves_along_d[0] == leaves_along_d[1]) return false;
-    const int from = leaves_along_d[0] ? ends[0] : ends[1], to = leaves_along_d[0] ? ends[1] : ends[0];
-    if (cross_[from].next >= 0 || cross_[to].prev >= 0) return false;  // an edge of f shared by more than two
-    cross_[from].next = to;
-    cross_[to].prev = from;
-    return true;
-  }
-
-  /// Whether crossing x comes before crossing y along their common edge
-  /// (from its first corner): x's parameter sa / (sa - sb) is smaller.
-  bool before(const Crossing& x, const Crossing& y) const {
-    // |sa| / |sa - sb| compared by cross-multiplication: below 2^82 * 2^83.
-    const auto mag = [](i128 v) { return v < 0 ? -v : v; };
-    const Int<83> xa(mag(x.sa)), ya(mag(y.sa));
-    const Int<84> xd(mag(x.sa - x.sb)), yd(mag(y.sa - y.sb));
-    return xa * yd < ya * xd;
-  }
-
-  /// A face of t: its outer loop (counter-clockwise, local ids), holes
-  /// (clockwise) and the other operand's winding number on it (-1: not yet known).
-  struct Face {
-    std::vector<std::uint32_t> loop;
-    std::vector<std::vector<std::uint32_t>> holes;
-    int w = -1;
-    /// Records w = value; false if the face already had the other value.
-    bool agree(bool value) {
-      if (w >= 0 && w != static_cast<int>(value)) return false;
-      w = value;
-      return true;
-    }
-  };
-  Face& next_face() {
-    if (faces_.size() == face_count_) faces_.emplace_back();
-    Face& f = faces_[face_count_++];
-    f.loop.clear(), f.holes.clear(), f.w = -1;
-    return f;
-  }
-
-  /// The faces of t between its boundary and the polylines, each walked
-  /// counter-clockwise; the kept ones ear-clipped into `out`.
-  bool walk_faces(std::uint32_t id, const std::array<IntPoint, 3>& c, Block& out);
-  /// The curves that close inside t: a face inside each, a hole in the face around it.
-  bool add_closed_curves(const Plane& support);
-  /// The kept faces' triangles, appended to `out` (crossing i is name_base + i there).
-  bool emit_faces(std::uint32_t id, const Plane& support, std::uint32_t name_base, Block& out);
-
-  static constexpr std::uint32_t kCorners = 3;  ///< local ids: 0-2 t's corners, 3 + i crossing i
-
-  const GridTriangles& grid_;
-  const InputTopology& topo_;
-  const SolveContext& ctx_;
-  const std::vector<std::uint32_t>& operand_of_;
-  std::vector<Crossing> cross_;
-  // Scratch: the boundary ring (local ids: 0-2 corners, 3 + i crossing i),
-  // per crossing its ring slot, a face's loop, its triangles.
-  std::vector<std::uint32_t> ring_, slot_;
-  std::vector<char> arc_used_, visited_;
-  std::vector<Face> faces_;  ///< the first face_count_ are this triangle's (reused storage)
-  std::size_t face_count_ = 0;
-  std::vector<std::vector<std::uint32_t>> loops_;
-  std::vector<std::array<std::uint32_t, 3>> tris_;
-  OutputVertices local_;
-  Wnv front_, back_;
-};
-
-bool TriangleCutter::walk_faces(std::uint32_t id, const std::array<IntPoint, 3>& c, Block& out) {
-  const std::size_t m = cross_.size();
-  ring_.clear();
-  for (int k = 0; k < 3; ++k) {
-    ring_.push_back(static_cast<std::uint32_t>(k));
-    const std::size_t first = ring_.size();
-    for (std::size_t i = 0; i < m; ++i)
-      if (cross_[i].edge == k) ring_.push_back(kCorners + static_cast<std::uint32_t>(i));
-    std::sort(ring_.begin() + static_cast<std::ptrdiff_t>(first), ring_.end(), [&](std::uint32_t x, std::uint32_t y) {
-      return before(cross_[x - kCorners], cross_[y - kCorners]);
-    });
-    for (std::size_t s = first + 1; s < ring_.size(); ++s)  // two planes through one point of the edge
-      if (!before(cross_[ring_[s - 1] - kCorners], cross_[ring_[s] - kCorners])) return false;
-  }
-  const std::size_t r = ring_.size();
-  slot_.assign(m, 0);
-  for (std::size_t s = 0; s < r; ++s)
-    if (ring_[s] >= kCorners) slot_[ring_[s] - kCorners] = static_cast<std::uint32_t>(s);
-  arc_used_.assign(r, 0);
-  visited_.assign(m, 0);
-  face_count_ = 0;
-  for (std::size_t start = 0; start < r; ++start) {
-    if (arc_used_[start]) continue;
-    Face& face = next_face();
-    std::size_t s = start, steps = 0;
-    do {
-      if (arc_used_[s] || ++steps > r) return false;
-      arc_used_[s] = 1;
-      face.loop.push_back(ring_[s]);
-      const std::uint32_t y = ring_[(s + 1) % r];
-      if (y < kCorners) {
-        s = (s + 1) % r;
-        continue;
-      }
-      // Along y's polyline to its other end on the boundary: forwards (the
-      // inside of the other solid on the left) when y is where it starts.
-      std::uint32_t x = y - kCorners;
-      const bool forward = cross_[x].next >= 0;
-      if (!face.agree(forward)) return false;
-      face.loop.push_back(y);
-      for (std::size_t hops = 0;; ++hops) {
-        if (hops > m) return false;
-        x = static_cast<std::uint32_t>(forward ? cross_[x].next : cross_[x].prev);
-        visited_[x] = 1;
-        if (cross_[x].edge >= 0) break;
-        face.loop.push_back(kCorners + x);
-      }
-      s = slot_[x];
-    } while (s != start);
-  }
-  local_.exact.resize(kCorners + m);
-  for (std::uint32_t k = 0; k < kCorners; ++k) local_.exact[k] = to_point(c[k]);
-  for (std::size_t i = 0; i < m; ++i) local_.exact[kCorners + i] = cross_[i].point;
-  const Plane support = *supporting_plane(c[0], c[1], c[2]);
-  if (!add_closed_curves(support)) return false;
-  const std::uint32_t name_base = static_cast<std::uint32_t>(out.names.size());
-  if (!emit_faces(id, support, name_base, out)) return false;
-  for (const Crossing& x : cross_) {
-    out.names.push_back(x.name);
-    out.points.push_back(x.point);
-  }
-  return true;
-}
-
-bool TriangleCutter::add_closed_curves(const Plane& support) {
-  const std::size_t boundary_faces = face_count_;
-  loops_.clear();
-  for (std::size_t i = 0; i < cross_.size(); ++i) {
-    if (visited_[i]) continue;
-    std::vector<std::uint32_t> curve;
-    std::size_t x = i;
-    do {  // forwards round the curve: interior crossings have both links
-      if (visited_[x] || cross_[x].edge >= 0 || cross_[x].next < 0) return false;
-      visited_[x] = 1;
-      curve.push_back(kCorners + static_cast<std::uint32_t>(x));
-      x = static_cast<std::size_t>(cross_[x].next);
-    } while (x != i);
-    loops_.push_back(std::move(curve));
-  }
-  if (loops_.empty()) return true;
-  // Each closed curve, run forwards, has the inside of the other solid on
-  // its left: counter-clockwise, its inside is a face with w = 1 and a hole
-  // with w = 0 around it; clockwise, the reverse.
-  const std::size_t n = loops_.size();
-  std::vector<int> turn(n);
-  for (std::size_t i = 0; i < n; ++i)
-    if ((turn[i] = loop_orientation_in_plane(loops_[i], support, local_)) == 0) return false;
-  // Nesting: the curves around each curve's first point.
-  std::vector<std::vector<std::uint32_t>> around(n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j) {
-      if (i == j) continue;
-      const int where = locate_in_loop(loops_[j], loops_[i][0], support, local_);
-      if (where < 0) return false;
-      if (where == 1) around[i].push_back(static_cast<std::uint32_t>(j));
-    }
-  // One face inside each curve (its loop counter-clockwise).
-  std::vector<std::size_t> inner(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    inner[i] = face_count_;
-    Face& f = next_face();
-    f.loop = loops_[i];
-    if (turn[i] < 0) std::reverse(f.loop.begin(), f.loop.end());
-    f.w = turn[i] > 0;
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    // The face that holds curve i: inside the innermost curve around it,
-    // else the boundary face whose loop holds its first point.
-    std::size_t holder = SIZE_MAX;
-    for (const std::uint32_t j : around[i])
-      if (around[j].size() + 1 == around[i].size()) holder = inner[j];
-    if (around[i].empty()) {
-      for (std::size_t f = 0; f < boundary_faces && holder == SIZE_MAX; ++f) {
-        const int where = boundary_faces == 1 ? 1 : locate_in_loop(faces_[f].loop, loops_[i][0], support, local_);
-        if (where < 0) return false;
-        if (where == 1) holder = f;
-      }
-    }
-    if (holder == SIZE_MAX) return false;
-    Face& f = faces_[holder];
-    if (!f.agree(turn[i] < 0)) return false;  // outside a curve w is 0 if it turns counter-clockwise
-    f.holes.push_back(loops_[i]);
-    if (turn[i] > 0) std::reverse(f.holes.back().begin(), f.holes.back().end());  // holes run clockwise
-  }
-  return true;
-}
-
-bool TriangleCutter::emit_faces(std::uint32_t id, const Plane& support, std::uint32_t name_base, Block& out) {
-  const std::uint32_t o = operand_of_[id];
-  for (std::size_t i = 0; i < face_count_; ++i) {
-    Face& face = faces_[i];
-    if (face.w < 0) return false;  // a face no curve reaches: t was not cut
-    // t's own operand is 0 in front of t and 1 behind it; the other one's is w on both sides.
-    front_[o] = 0, back_[o] = 1, front_[1 - o] = back_[1 - o] = face.w;
-    const bool in_front = ctx_.inside(front_), in_back = ctx_.inside(back_);
-    if (in_front == in_back) continue;
-    ++out.faces;
-    tris_.clear();
-    if (!face.holes.empty()) {
-      if (!triangulate_with_holes(face.loop, face.holes, support, local_, tris_)) return false;
-    } else if (face.loop.size() == 3) {
-      tris_.push_back({face.loop[0], face.loop[1], face.loop[2]});
-    } else if (!triangulate_loop(face.loop, support, local_, tris_)) {
-      return false;
-    }
-    for (std::array<std::uint32_t, 3> t : tris_) {
-      if (in_front) std::swap(t[1], t[2]);  // emitted reversed: the result lies in front
-      for (std::uint32_t& v : t)
-        if (v >= kCorners) v = kCorners + name_base + (v - kCorners);
-      out.tris.push_back(t);
-      out.source.push_back(id);
-    }
-  }
-  return true;
-}
-
-}  // namespace
 
 std::optional<MeshOutput> direct_solid_mesh(const Soup& soup, const GridTriangles& grid, const Box& box,
                                             const SolveContext& ctx, const OperandTrees& trees,
@@ -401,7 +30,7 @@ std::optional<MeshOutput> direct_solid_mesh(const Soup& soup, const GridTriangle
   // Touched triangles in fixed blocks, each block's output in id order: the
   // result does not depend on the schedule.
   constexpr std::size_t kBlock = 64;
-  std::vector<Block> blocks((touched.size() + kBlock - 1) / kBlock);
+  std::vector<CutFaces> blocks((touched.size() + kBlock - 1) / kBlock);
   std::atomic<bool> failed{false};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 1), [&](const auto& range) {
     TriangleCutter cutter(grid, topology, ctx, operand_of);
@@ -421,7 +50,7 @@ std::optional<MeshOutput> direct_solid_mesh(const Soup& soup, const GridTriangle
   const std::uint32_t inputs = topology.operand_base.back();
   std::vector<std::size_t> name_at(blocks.size() + 1, 0);
   for (std::size_t b = 0; b < blocks.size(); ++b) name_at[b + 1] = name_at[b] + blocks[b].names.size();
-  std::vector<std::pair<Name, std::uint32_t>> named(name_at.back());  // (name, global occurrence)
+  std::vector<std::pair<CrossingName, std::uint32_t>> named(name_at.back());  // (name, global occurrence)
   tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
     for (std::size_t i = 0; i < blocks[b].names.size(); ++i)
       named[name_at[b] + i] = {blocks[b].names[i], static_cast<std::uint32_t>(name_at[b] + i)};
@@ -461,7 +90,7 @@ std::optional<MeshOutput> direct_solid_mesh(const Soup& soup, const GridTriangle
     }
   });
   tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
-    const Block& block = blocks[b];
+    const CutFaces& block = blocks[b];
     for (std::size_t i = 0; i < block.tris.size(); ++i) {
       std::array<std::uint32_t, 3>& t = tris[tri_at[b] + i];
       for (std::size_t k = 0; k < 3; ++k) {
@@ -485,7 +114,7 @@ std::optional<MeshOutput> direct_solid_mesh(const Soup& soup, const GridTriangle
   };
   write_indexed_mesh(tris, inputs + first_of.size(), position, q.grid_points_exact() ? untouched->size() : 0,
                      out.mesh, out.stats.rounded_degenerate);
-  for (const Block& block : blocks) out.stats.regions += block.faces;
+  for (const CutFaces& block : blocks) out.stats.regions += block.faces;
   out.stats.triangulate_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - clock).count();
   return out;
 }

@@ -1,0 +1,260 @@
+// The direct route's work on one touched triangle (direct_faces.hpp; the
+// argument is in direct_mesh.hpp).
+#include "core/direct_faces.hpp"
+
+#include <algorithm>
+
+namespace ember::core {
+
+namespace {
+
+using i128 = __int128;
+
+int sign_of(i128 v) { return (v > 0) - (v < 0); }
+
+/// orient3d of grid points: ((b - a) x (c - a)) . (d - a), exactly.
+/// Differences are below 2^26, the cross product's components below 2^53
+/// (int64) and the sum of three products below 2^81 (__int128).
+i128 orient3d(const IntPoint& a, const IntPoint& b, const IntPoint& c, const IntPoint& d) {
+  static_assert(kCoordLimit <= (std::int64_t{1} << 25), "orient3d: differences < 2^26, cross < 2^53, dot < 2^81");
+  const std::int64_t bx = b.x - a.x, by = b.y - a.y, bz = b.z - a.z;
+  const std::int64_t cx = c.x - a.x, cy = c.y - a.y, cz = c.z - a.z;
+  return i128{by * cz - bz * cy} * (d.x - a.x) + i128{bz * cx - bx * cz} * (d.y - a.y) +
+         i128{bx * cy - by * cx} * (d.z - a.z);
+}
+
+/// The point of segment a -> b where it crosses a plane that a and b lie on
+/// opposite sides of (side values sa, sb from grid_side, nonzero, |s| <
+/// 2^82): (a * -sb + b * sa) / (sa - sb), with w > 0. Coordinates below
+/// 2^83 * 2^26 * 2 = 2^110 and w below 2^83: well inside Point's bounds.
+Point crossing_point(const IntPoint& a, const IntPoint& b, i128 sa, i128 sb) {
+  static_assert(PointXYZ::bits >= 110 && PointW::bits >= 84, "crossing points fit Point");
+  Int<83> ka(-sb), kb(sa);
+  Int<84> w(sa - sb);
+  if (w.negative()) ka = -ka, kb = -kb, w = -w;
+  Point p;
+  p.x = ka * Int<26>(a.x) + kb * Int<26>(b.x);
+  p.y = ka * Int<26>(a.y) + kb * Int<26>(b.y);
+  p.z = ka * Int<26>(a.z) + kb * Int<26>(b.z);
+  p.w = w;
+  detail::cache_approx(p);
+  return p;
+}
+
+}  // namespace
+
+bool TriangleCutter::add_chord(std::uint32_t id, const std::array<IntPoint, 3>& c, const std::array<std::int64_t, 3>& n,
+               std::uint32_t f) {
+  const std::array<IntPoint, 3>& d = grid_.corners[f];
+  const std::array<std::int64_t, 3> nf = grid_normal(d[0], d[1], d[2]);
+  i128 st[3], sf[3];  // t's corners against f's plane, f's against t's
+  for (int i = 0; i < 3; ++i) {
+    st[i] = grid_side(d[0], nf, c[i]);
+    sf[i] = grid_side(c[0], n, d[i]);
+    if (st[i] == 0 || sf[i] == 0) return false;  // a corner on the other's plane
+  }
+  int ends[2], found = 0;
+  bool leaves_along_d[2];
+  // An edge p -> q of one triangle that crosses the other's plane crosses
+  // the other triangle's interior iff it turns the same way around all of
+  // its edges (orient3d); a zero means it meets an edge's line there.
+  const auto crossing = [&](const IntPoint& p, const IntPoint& q, const std::array<IntPoint, 3>& other, int& inside) {
+    const int o0 = sign_of(orient3d(p, q, other[0], other[1])), o1 = sign_of(orient3d(p, q, other[1], other[2])),
+              o2 = sign_of(orient3d(p, q, other[2], other[0]));
+    if (o0 == 0 || o1 == 0 || o2 == 0) return false;
+    inside = o0 == o1 && o1 == o2;
+    return true;
+  };
+  // The end points on t's edges (crossing f), then on f's (crossing t).
+  // d = n_t x n_f points into t from t's edge i -> j iff n_f . (c_j - c_i)
+  // > 0, and into f from f's edge i -> j iff n_t . (d_j - d_i) < 0.
+  for (const bool on_t : {true, false}) {
+    const std::array<IntPoint, 3>& e = on_t ? c : d;
+    const i128* s = on_t ? st : sf;
+    for (int i = 0; i < 3; ++i) {
+      const int j = i == 2 ? 0 : i + 1;
+      if ((s[i] > 0) == (s[j] > 0)) continue;
+      int inside = 0;
+      if (!crossing(e[i], e[j], on_t ? d : c, inside)) return false;
+      if (!inside) continue;
+      if (found == 2) return false;
+      const int x = find_or_add(on_t ? CrossingName{edge_key(id, i), f} : CrossingName{edge_key(f, i), id});
+      cross_[x].point = crossing_point(e[i], e[j], s[i], s[j]);
+      if (on_t) cross_[x].edge = i, cross_[x].sa = s[i], cross_[x].sb = s[j];
+      leaves_along_d[found] = on_t ? s[j] > 0 : s[j] < 0;
+      ends[found++] = x;
+    }
+  }
+  if (found != 2 || leaves_along_d[0] == leaves_along_d[1]) return false;
+  const int from = leaves_along_d[0] ? ends[0] : ends[1], to = leaves_along_d[0] ? ends[1] : ends[0];
+  if (cross_[from].next >= 0 || cross_[to].prev >= 0) return false;  // an edge of f shared by more than two
+  cross_[from].next = to;
+  cross_[to].prev = from;
+  return true;
+}
+
+bool TriangleCutter::before(const Crossing& x, const Crossing& y) const {
+  // |sa| / |sa - sb| compared by cross-multiplication: below 2^82 * 2^83.
+  const auto mag = [](i128 v) { return v < 0 ? -v : v; };
+  const Int<83> xa(mag(x.sa)), ya(mag(y.sa));
+  const Int<84> xd(mag(x.sa - x.sb)), yd(mag(y.sa - y.sb));
+  return xa * yd < ya * xd;
+}
+
+bool TriangleCutter::walk_faces(std::uint32_t id, const std::array<IntPoint, 3>& c, CutFaces& out) {
+  const std::size_t m = cross_.size();
+  ring_.clear();
+  for (int k = 0; k < 3; ++k) {
+    ring_.push_back(static_cast<std::uint32_t>(k));
+    const std::size_t first = ring_.size();
+    for (std::size_t i = 0; i < m; ++i)
+      if (cross_[i].edge == k) ring_.push_back(kCorners + static_cast<std::uint32_t>(i));
+    std::sort(ring_.begin() + static_cast<std::ptrdiff_t>(first), ring_.end(), [&](std::uint32_t x, std::uint32_t y) {
+      return before(cross_[x - kCorners], cross_[y - kCorners]);
+    });
+    for (std::size_t s = first + 1; s < ring_.size(); ++s)  // two planes through one point of the edge
+      if (!before(cross_[ring_[s - 1] - kCorners], cross_[ring_[s] - kCorners])) return false;
+  }
+  const std::size_t r = ring_.size();
+  slot_.assign(m, 0);
+  for (std::size_t s = 0; s < r; ++s)
+    if (ring_[s] >= kCorners) slot_[ring_[s] - kCorners] = static_cast<std::uint32_t>(s);
+  arc_used_.assign(r, 0);
+  visited_.assign(m, 0);
+  face_count_ = 0;
+  for (std::size_t start = 0; start < r; ++start) {
+    if (arc_used_[start]) continue;
+    Face& face = next_face();
+    std::size_t s = start, steps = 0;
+    do {
+      if (arc_used_[s] || ++steps > r) return false;
+      arc_used_[s] = 1;
+      face.loop.push_back(ring_[s]);
+      const std::uint32_t y = ring_[(s + 1) % r];
+      if (y < kCorners) {
+        s = (s + 1) % r;
+        continue;
+      }
+      // Along y's polyline to its other end on the boundary: forwards (the
+      // inside of the other solid on the left) when y is where it starts.
+      std::uint32_t x = y - kCorners;
+      const bool forward = cross_[x].next >= 0;
+      if (!face.agree(forward)) return false;
+      face.loop.push_back(y);
+      for (std::size_t hops = 0;; ++hops) {
+        if (hops > m) return false;
+        x = static_cast<std::uint32_t>(forward ? cross_[x].next : cross_[x].prev);
+        visited_[x] = 1;
+        if (cross_[x].edge >= 0) break;
+        face.loop.push_back(kCorners + x);
+      }
+      s = slot_[x];
+    } while (s != start);
+  }
+  local_.exact.resize(kCorners + m);
+  for (std::uint32_t k = 0; k < kCorners; ++k) local_.exact[k] = to_point(c[k]);
+  for (std::size_t i = 0; i < m; ++i) local_.exact[kCorners + i] = cross_[i].point;
+  const Plane support = *supporting_plane(c[0], c[1], c[2]);
+  if (!add_closed_curves(support)) return false;
+  const std::uint32_t name_base = static_cast<std::uint32_t>(out.names.size());
+  if (!emit_faces(id, support, name_base, out)) return false;
+  for (const Crossing& x : cross_) {
+    out.names.push_back(x.name);
+    out.points.push_back(x.point);
+  }
+  return true;
+}
+
+bool TriangleCutter::add_closed_curves(const Plane& support) {
+  const std::size_t boundary_faces = face_count_;
+  loops_.clear();
+  for (std::size_t i = 0; i < cross_.size(); ++i) {
+    if (visited_[i]) continue;
+    std::vector<std::uint32_t> curve;
+    std::size_t x = i;
+    do {  // forwards round the curve: interior crossings have both links
+      if (visited_[x] || cross_[x].edge >= 0 || cross_[x].next < 0) return false;
+      visited_[x] = 1;
+      curve.push_back(kCorners + static_cast<std::uint32_t>(x));
+      x = static_cast<std::size_t>(cross_[x].next);
+    } while (x != i);
+    loops_.push_back(std::move(curve));
+  }
+  if (loops_.empty()) return true;
+  // Each closed curve, run forwards, has the inside of the other solid on
+  // its left: counter-clockwise, its inside is a face with w = 1 and a hole
+  // with w = 0 around it; clockwise, the reverse.
+  const std::size_t n = loops_.size();
+  std::vector<int> turn(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if ((turn[i] = loop_orientation_in_plane(loops_[i], support, local_)) == 0) return false;
+  // Nesting: the curves around each curve's first point.
+  std::vector<std::vector<std::uint32_t>> around(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      if (i == j) continue;
+      const int where = locate_in_loop(loops_[j], loops_[i][0], support, local_);
+      if (where < 0) return false;
+      if (where == 1) around[i].push_back(static_cast<std::uint32_t>(j));
+    }
+  // One face inside each curve (its loop counter-clockwise).
+  std::vector<std::size_t> inner(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    inner[i] = face_count_;
+    Face& f = next_face();
+    f.loop = loops_[i];
+    if (turn[i] < 0) std::reverse(f.loop.begin(), f.loop.end());
+    f.w = turn[i] > 0;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    // The face that holds curve i: inside the innermost curve around it,
+    // else the boundary face whose loop holds its first point.
+    std::size_t holder = SIZE_MAX;
+    for (const std::uint32_t j : around[i])
+      if (around[j].size() + 1 == around[i].size()) holder = inner[j];
+    if (around[i].empty()) {
+      for (std::size_t f = 0; f < boundary_faces && holder == SIZE_MAX; ++f) {
+        const int where = boundary_faces == 1 ? 1 : locate_in_loop(faces_[f].loop, loops_[i][0], support, local_);
+        if (where < 0) return false;
+        if (where == 1) holder = f;
+      }
+    }
+    if (holder == SIZE_MAX) return false;
+    Face& f = faces_[holder];
+    if (!f.agree(turn[i] < 0)) return false;  // outside a curve w is 0 if it turns counter-clockwise
+    f.holes.push_back(loops_[i]);
+    if (turn[i] > 0) std::reverse(f.holes.back().begin(), f.holes.back().end());  // holes run clockwise
+  }
+  return true;
+}
+
+bool TriangleCutter::emit_faces(std::uint32_t id, const Plane& support, std::uint32_t name_base, CutFaces& out) {
+  const std::uint32_t o = operand_of_[id];
+  for (std::size_t i = 0; i < face_count_; ++i) {
+    Face& face = faces_[i];
+    if (face.w < 0) return false;  // a face no curve reaches: t was not cut
+    // t's own operand is 0 in front of t and 1 behind it; the other one's is w on both sides.
+    front_[o] = 0, back_[o] = 1, front_[1 - o] = back_[1 - o] = face.w;
+    const bool in_front = ctx_.inside(front_), in_back = ctx_.inside(back_);
+    if (in_front == in_back) continue;
+    ++out.faces;
+    tris_.clear();
+    if (!face.holes.empty()) {
+      if (!triangulate_with_holes(face.loop, face.holes, support, local_, tris_)) return false;
+    } else if (face.loop.size() == 3) {
+      tris_.push_back({face.loop[0], face.loop[1], face.loop[2]});
+    } else if (!triangulate_loop(face.loop, support, local_, tris_)) {
+      return false;
+    }
+    for (std::array<std::uint32_t, 3> t : tris_) {
+      if (in_front) std::swap(t[1], t[2]);  // emitted reversed: the result lies in front
+      for (std::uint32_t& v : t)
+        if (v >= kCorners) v = kCorners + name_base + (v - kCorners);
+      out.tris.push_back(t);
+      out.source.push_back(id);
+    }
+  }
+  return true;
+}
+
+}  // namespace ember::core

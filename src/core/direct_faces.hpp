@@ -1,0 +1,146 @@
+#pragma once
+// The direct route's work on one touched triangle (direct_mesh.hpp): its
+// chords with its partners, joined into polylines and closed curves by the
+// names of their end points, the faces they cut it into, and the kept
+// faces' triangles.
+#include <array>
+#include <compare>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/mesh/mesh_output.hpp"
+#include "core/soup.hpp"
+#include "core/solid_check.hpp"
+#include "core/solve.hpp"
+
+namespace ember::core {
+
+/// A point where an edge of one operand crosses the interior of a triangle
+/// of the other: the edge's welded vertex ids (smaller first) and the
+/// crossed triangle's id.
+struct CrossingName {
+  std::uint64_t edge = 0;
+  std::uint32_t face = 0;
+  friend auto operator<=>(const CrossingName&, const CrossingName&) = default;
+};
+
+/// Where a touched triangle's work goes: per block of touched triangles,
+/// their kept faces' triangles (corner refs: 0-2 the source triangle's
+/// corners, 3 + i the block's crossing i), sources and crossings.
+struct CutFaces {
+  std::vector<CrossingName> names;
+  std::vector<Point> points;
+  std::vector<std::array<std::uint32_t, 3>> tris;
+  std::vector<std::uint32_t> source;
+  std::size_t faces = 0;
+};
+
+/// One touched triangle cut by its partners into faces; the kept faces'
+/// triangles appended to a CutFaces.
+class TriangleCutter {
+ public:
+  TriangleCutter(const GridTriangles& grid, const InputTopology& topology, const SolveContext& ctx,
+                 const std::vector<std::uint32_t>& operand_of)
+      : grid_(grid), topo_(topology), ctx_(ctx), operand_of_(operand_of) {
+    front_.resize(2);
+    back_.resize(2);
+    local_.exact.resize(3);
+  }
+
+  /// False if the triangle is not in general position with its partners
+  /// (or a curve closes inside it, or a face cannot be ear-clipped).
+  bool cut(std::uint32_t id, std::span<const std::uint32_t> partners, CutFaces& out) {
+    cross_.clear();
+    const std::array<IntPoint, 3>& c = grid_.corners[id];
+    const std::array<std::int64_t, 3> n = grid_normal(c[0], c[1], c[2]);
+    for (const std::uint32_t f : partners)
+      if (!add_chord(id, c, n, f)) return false;
+    for (const Crossing& x : cross_)
+      if (x.edge >= 0 ? (x.next < 0) == (x.prev < 0) : (x.next < 0 || x.prev < 0)) return false;
+    return walk_faces(id, c, out);
+  }
+
+ private:
+  /// A crossing point of one touched triangle, local to it.
+  struct Crossing {
+    CrossingName name;
+    Point point;
+    int edge = -1;     ///< the triangle's own edge it lies on, or -1 inside the triangle
+    __int128 sa = 0, sb = 0;  ///< on an edge: the sides of its end points against the crossed plane
+    int next = -1, prev = -1;  ///< chords: the crossing the curve runs on to / came from (local index)
+  };
+
+  std::uint32_t vertex(std::uint32_t t, int k) const {
+    return topo_.operand_base[operand_of_[t]] + topo_.by_triangle[t][static_cast<std::size_t>(k)];
+  }
+  std::uint64_t edge_key(std::uint32_t t, int k) const {
+    const std::uint64_t u = vertex(t, k), v = vertex(t, k == 2 ? 0 : k + 1);
+    return std::min(u, v) << 32 | std::max(u, v);
+  }
+  int find_or_add(const CrossingName& name) {
+    for (std::size_t i = 0; i < cross_.size(); ++i)
+      if (cross_[i].name == name) return static_cast<int>(i);
+    cross_.emplace_back();
+    cross_.back().name = name;
+    return static_cast<int>(cross_.size() - 1);
+  }
+
+  /// The chord of t (id, corners c, normal n) and partner f: its two end
+  /// points, linked in the direction d = n_t x n_f (inside of f's solid on
+  /// the left, seen from t's front).
+  bool add_chord(std::uint32_t id, const std::array<IntPoint, 3>& c, const std::array<std::int64_t, 3>& n,
+                 std::uint32_t f);
+
+  /// Whether crossing x comes before crossing y along their common edge
+  /// (from its first corner): x's parameter sa / (sa - sb) is smaller.
+  bool before(const Crossing& x, const Crossing& y) const;
+
+  /// A face of t: its outer loop (counter-clockwise, local ids), holes
+  /// (clockwise) and the other operand's winding number on it (-1: not yet known).
+  struct Face {
+    std::vector<std::uint32_t> loop;
+    std::vector<std::vector<std::uint32_t>> holes;
+    int w = -1;
+    /// Records w = value; false if the face already had the other value.
+    bool agree(bool value) {
+      if (w >= 0 && w != static_cast<int>(value)) return false;
+      w = value;
+      return true;
+    }
+  };
+  Face& next_face() {
+    if (faces_.size() == face_count_) faces_.emplace_back();
+    Face& f = faces_[face_count_++];
+    f.loop.clear(), f.holes.clear(), f.w = -1;
+    return f;
+  }
+
+  /// The faces of t between its boundary and the polylines, each walked
+  /// counter-clockwise; the kept ones ear-clipped into `out`.
+  bool walk_faces(std::uint32_t id, const std::array<IntPoint, 3>& c, CutFaces& out);
+  /// The curves that close inside t: a face inside each, a hole in the face around it.
+  bool add_closed_curves(const Plane& support);
+  /// The kept faces' triangles, appended to `out` (crossing i is name_base + i there).
+  bool emit_faces(std::uint32_t id, const Plane& support, std::uint32_t name_base, CutFaces& out);
+
+  static constexpr std::uint32_t kCorners = 3;  ///< local ids: 0-2 t's corners, 3 + i crossing i
+
+  const GridTriangles& grid_;
+  const InputTopology& topo_;
+  const SolveContext& ctx_;
+  const std::vector<std::uint32_t>& operand_of_;
+  std::vector<Crossing> cross_;
+  // Scratch: the boundary ring (local ids: 0-2 corners, 3 + i crossing i),
+  // per crossing its ring slot, a face's loop, its triangles.
+  std::vector<std::uint32_t> ring_, slot_;
+  std::vector<char> arc_used_, visited_;
+  std::vector<Face> faces_;  ///< the first face_count_ are this triangle's (reused storage)
+  std::size_t face_count_ = 0;
+  std::vector<std::vector<std::uint32_t>> loops_;
+  std::vector<std::array<std::uint32_t, 3>> tris_;
+  OutputVertices local_;
+  Wnv front_, back_;
+};
+
+}  // namespace ember::core
