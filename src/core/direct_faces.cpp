@@ -78,7 +78,9 @@ bool TriangleCutter::add_chord(std::uint32_t id, const std::array<IntPoint, 3>& 
       if (!crossing(e[i], e[j], on_t ? d : c, inside)) return false;
       if (!inside) continue;
       if (found == 2) return false;
-      const int x = find_or_add(on_t ? CrossingName{edge_key(id, i), f} : CrossingName{edge_key(f, i), id});
+      const int x = static_cast<int>(cross_.size());
+      cross_.emplace_back();
+      cross_[x].name = on_t ? CrossingName{edge_key(id, i), f} : CrossingName{edge_key(f, i), id};
       cross_[x].point = crossing_point(e[i], e[j], s[i], s[j]);
       if (on_t) cross_[x].edge = i, cross_[x].sa = s[i], cross_[x].sb = s[j];
       leaves_along_d[found] = on_t ? s[j] > 0 : s[j] < 0;
@@ -87,9 +89,35 @@ bool TriangleCutter::add_chord(std::uint32_t id, const std::array<IntPoint, 3>& 
   }
   if (found != 2 || leaves_along_d[0] == leaves_along_d[1]) return false;
   const int from = leaves_along_d[0] ? ends[0] : ends[1], to = leaves_along_d[0] ? ends[1] : ends[0];
-  if (cross_[from].next >= 0 || cross_[to].prev >= 0) return false;  // an edge of f shared by more than two
   cross_[from].next = to;
   cross_[to].prev = from;
+  return true;
+}
+
+bool TriangleCutter::merge_equal_names() {
+  const std::size_t n = cross_.size();
+  order_.resize(n);
+  for (std::uint32_t k = 0; k < n; ++k) order_[k] = k;
+  std::sort(order_.begin(), order_.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return cross_[a].name != cross_[b].name ? cross_[a].name < cross_[b].name : a < b;
+  });
+  merged_.clear();
+  merged_at_.resize(n);
+  for (const std::uint32_t k : order_) {
+    if (merged_.empty() || merged_.back().name != cross_[k].name) {
+      merged_.push_back(cross_[k]);
+      merged_.back().next = merged_.back().prev = -1;
+    }
+    merged_at_[k] = static_cast<std::uint32_t>(merged_.size() - 1);
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    if (cross_[k].next < 0) continue;
+    const std::uint32_t a = merged_at_[k], b = merged_at_[static_cast<std::size_t>(cross_[k].next)];
+    if (merged_[a].next >= 0 || merged_[b].prev >= 0) return false;  // an edge shared by more than two
+    merged_[a].next = static_cast<int>(b);
+    merged_[b].prev = static_cast<int>(a);
+  }
+  cross_.swap(merged_);
   return true;
 }
 

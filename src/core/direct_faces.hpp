@@ -56,6 +56,7 @@ class TriangleCutter {
     const std::array<std::int64_t, 3> n = grid_normal(c[0], c[1], c[2]);
     for (const std::uint32_t f : partners)
       if (!add_chord(id, c, n, f)) return false;
+    if (!merge_equal_names()) return false;
     for (const Crossing& x : cross_)
       if (x.edge >= 0 ? (x.next < 0) == (x.prev < 0) : (x.next < 0 || x.prev < 0)) return false;
     return walk_faces(id, c, out);
@@ -78,13 +79,12 @@ class TriangleCutter {
     const std::uint64_t u = vertex(t, k), v = vertex(t, k == 2 ? 0 : k + 1);
     return std::min(u, v) << 32 | std::max(u, v);
   }
-  int find_or_add(const CrossingName& name) {
-    for (std::size_t i = 0; i < cross_.size(); ++i)
-      if (cross_[i].name == name) return static_cast<int>(i);
-    cross_.emplace_back();
-    cross_.back().name = name;
-    return static_cast<int>(cross_.size() - 1);
-  }
+  /// Merges the chords' end points that have the same name (a crossing
+  /// inside t ends two chords): one Crossing per name, in name order, with
+  /// the chords' links. False if a crossing would get two successors or two
+  /// predecessors (an edge shared by more than two triangles). A sort, not a
+  /// search per end point: a large triangle may have thousands of partners.
+  bool merge_equal_names();
 
   /// The chord of t (id, corners c, normal n) and partner f: its two end
   /// points, linked in the direction d = n_t x n_f (inside of f's solid on
@@ -130,7 +130,8 @@ class TriangleCutter {
   const InputTopology& topo_;
   const SolveContext& ctx_;
   const std::vector<std::uint32_t>& operand_of_;
-  std::vector<Crossing> cross_;
+  std::vector<Crossing> cross_, merged_;
+  std::vector<std::uint32_t> order_, merged_at_;
   // Scratch: the boundary ring (local ids: 0-2 corners, 3 + i crossing i),
   // per crossing its ring slot, a face's loop, its triangles.
   std::vector<std::uint32_t> ring_, slot_;
