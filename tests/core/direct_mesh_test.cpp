@@ -14,7 +14,7 @@ namespace {
 
 using Op = Operation;
 
-constexpr Op kOps[] = {Op::Union, Op::Intersection, Op::Difference};
+constexpr Op kOps[] = {Op::Union, Op::Intersection, Op::Difference, Op::Xor};
 
 BooleanResult run_direct(const std::vector<Mesh>& ops, Op op, int threads = 0) {
   BooleanOptions opt;
