@@ -49,7 +49,8 @@ class TriangleCutter {
   }
 
   /// False if the triangle is not in general position with its partners
-  /// (or a curve closes inside it, or a face cannot be ear-clipped).
+  /// (or closed curves' nesting cannot be decided, or a face cannot be
+  /// ear-clipped): the caller then declines the direct route.
   bool cut(std::uint32_t id, std::span<const std::uint32_t> partners, CutFaces& out) {
     cross_.clear();
     const std::array<IntPoint, 3>& c = grid_.corners[id];

@@ -24,17 +24,20 @@
 //  * an edge of f that crosses t's interior is shared by exactly two
 //    triangles of f's (closed, manifold) operand, both meeting t: the chords
 //    join there into polylines that run from t's boundary to t's boundary,
-//    or into closed loops (not handled: the caller falls back).
+//    and into closed curves inside t.
 //  * the chords cut t into faces, walked counter-clockwise along t's
-//    boundary and the polylines. A chord of f, traversed along
+//    boundary and the polylines; a closed curve bounds a face of its own and
+//    is a hole of the face around it (nesting by an exact ray-crossing
+//    test). A chord of f, traversed along
 //    d = n_t x n_f, has the inside of f's solid on its left; which way a
 //    face walk traverses a polyline follows from the signs of the crossing
-//    edges' end points (direct_mesh.cpp), so every face knows its winding
+//    edges' end points (direct_faces.cpp), so every face knows its winding
 //    numbers without a trace: t's own operand changes across t, f's is 1 on
 //    the inside of a chord and 0 outside.
-// Each kept face is ear-clipped exactly in t's plane (triangulate_loop); a
-// point where two triangles meet is a vertex of every face that reaches it,
-// so the mesh is closed by construction, with no vertex inside any edge.
+// Each kept face is ear-clipped exactly in t's plane (triangulate_loop,
+// triangulate_with_holes); a point where two triangles meet is a vertex of
+// every face that reaches it, so the mesh is closed by construction, with no
+// vertex inside any edge.
 // Untouched triangles keep the solid path's classification (one trace per
 // component) and pass through as they are.
 #include <atomic>
@@ -49,9 +52,9 @@ namespace ember::core {
 /// The result's mesh for two operands, both solid in `ctx`, from the
 /// partners of the solid path's step 1 (find_partners). nullopt when the
 /// route does not apply: more or fewer than two operands, some meeting pair
-/// not in general position, a curve that closes inside one triangle, an
-/// edge at a crossing that is not manifold, a face that ear clipping cannot
-/// take, a failed trace, or `stop` set. The caller then takes the solid
+/// not in general position, closed curves whose nesting cannot be decided,
+/// an edge at a crossing that is not manifold, a face that ear clipping
+/// cannot take, a failed trace, or `stop` set. The caller then takes the solid
 /// path's pieces and the mesh stage, which handle all of these.
 /// Deterministic: the output does not depend on the schedule.
 std::optional<MeshOutput> direct_solid_mesh(const Soup& soup, const GridTriangles& grid, const Box& box,
