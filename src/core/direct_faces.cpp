@@ -6,27 +6,14 @@
 
 namespace ember::core {
 
-namespace {
-
 using i128 = __int128;
+
+namespace {
 
 int sign_of(i128 v) { return (v > 0) - (v < 0); }
 
-/// orient3d of grid points: ((b - a) x (c - a)) . (d - a), exactly.
-/// Differences are below 2^26, the cross product's components below 2^53
-/// (int64) and the sum of three products below 2^81 (__int128).
-i128 orient3d(const IntPoint& a, const IntPoint& b, const IntPoint& c, const IntPoint& d) {
-  static_assert(kCoordLimit <= (std::int64_t{1} << 25), "orient3d: differences < 2^26, cross < 2^53, dot < 2^81");
-  const std::int64_t bx = b.x - a.x, by = b.y - a.y, bz = b.z - a.z;
-  const std::int64_t cx = c.x - a.x, cy = c.y - a.y, cz = c.z - a.z;
-  return i128{by * cz - bz * cy} * (d.x - a.x) + i128{bz * cx - bx * cz} * (d.y - a.y) +
-         i128{bx * cy - by * cx} * (d.z - a.z);
-}
+}  // namespace
 
-/// The point of segment a -> b where it crosses a plane that a and b lie on
-/// opposite sides of (side values sa, sb from grid_side, nonzero, |s| <
-/// 2^82): (a * -sb + b * sa) / (sa - sb), with w > 0. Coordinates below
-/// 2^83 * 2^26 * 2 = 2^110 and w below 2^83: well inside Point's bounds.
 Point crossing_point(const IntPoint& a, const IntPoint& b, i128 sa, i128 sb) {
   static_assert(PointXYZ::bits >= 110 && PointW::bits >= 84, "crossing points fit Point");
   Int<83> ka(-sb), kb(sa);
@@ -41,7 +28,11 @@ Point crossing_point(const IntPoint& a, const IntPoint& b, i128 sa, i128 sb) {
   return p;
 }
 
-}  // namespace
+bool crossing_before(i128 xa, i128 xb, i128 ya, i128 yb) {
+  // |sa| / |sa - sb| compared by cross-multiplication: below 2^83 * 2^84.
+  const auto mag = [](i128 v) { return v < 0 ? -v : v; };
+  return Int<83>(mag(xa)) * Int<84>(mag(ya - yb)) < Int<83>(mag(ya)) * Int<84>(mag(xa - xb));
+}
 
 bool TriangleCutter::add_chord(std::uint32_t id, const std::array<IntPoint, 3>& c, const std::array<std::int64_t, 3>& n,
                std::uint32_t f) {
@@ -59,8 +50,8 @@ bool TriangleCutter::add_chord(std::uint32_t id, const std::array<IntPoint, 3>& 
   // the other triangle's interior iff it turns the same way around all of
   // its edges (orient3d); a zero means it meets an edge's line there.
   const auto crossing = [&](const IntPoint& p, const IntPoint& q, const std::array<IntPoint, 3>& other, int& inside) {
-    const int o0 = sign_of(orient3d(p, q, other[0], other[1])), o1 = sign_of(orient3d(p, q, other[1], other[2])),
-              o2 = sign_of(orient3d(p, q, other[2], other[0]));
+    const int o0 = sign_of(grid_orient3d(p, q, other[0], other[1])), o1 = sign_of(grid_orient3d(p, q, other[1], other[2])),
+              o2 = sign_of(grid_orient3d(p, q, other[2], other[0]));
     if (o0 == 0 || o1 == 0 || o2 == 0) return false;
     inside = o0 == o1 && o1 == o2;
     return true;
@@ -122,11 +113,7 @@ bool TriangleCutter::merge_equal_names() {
 }
 
 bool TriangleCutter::before(const Crossing& x, const Crossing& y) const {
-  // |sa| / |sa - sb| compared by cross-multiplication: below 2^82 * 2^83.
-  const auto mag = [](i128 v) { return v < 0 ? -v : v; };
-  const Int<83> xa(mag(x.sa)), ya(mag(y.sa));
-  const Int<84> xd(mag(x.sa - x.sb)), yd(mag(y.sa - y.sb));
-  return xa * yd < ya * xd;
+  return crossing_before(x.sa, x.sb, y.sa, y.sb);
 }
 
 bool TriangleCutter::walk_faces(std::uint32_t id, const std::array<IntPoint, 3>& c, CutFaces& out) {

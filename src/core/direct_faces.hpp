@@ -25,6 +25,18 @@ struct CrossingName {
   friend auto operator<=>(const CrossingName&, const CrossingName&) = default;
 };
 
+/// The point of segment a -> b (grid points) where it crosses a plane that
+/// a and b lie strictly on opposite sides of, given their side values sa,
+/// sb against it (grid_side: nonzero, |s| < 2^82): (a (-sb) + b sa) /
+/// (sa - sb), with w > 0. Coordinates below 2^83 * 2^26 * 2 = 2^110 and w
+/// below 2^84: well inside Point's bounds.
+Point crossing_point(const IntPoint& a, const IntPoint& b, __int128 sa, __int128 sb);
+
+/// Whether the crossing with side values (xa, xb) comes strictly before the
+/// one with (ya, yb) along a common segment from its first point: its
+/// parameter xa / (xa - xb) is smaller. Both pairs are of opposite signs.
+bool crossing_before(__int128 xa, __int128 xb, __int128 ya, __int128 yb);
+
 /// Where a touched triangle's work goes: per block of touched triangles,
 /// their kept faces' triangles (corner refs: 0-2 the source triangle's
 /// corners, 3 + i the block's crossing i), sources and crossings.

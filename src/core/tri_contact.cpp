@@ -20,16 +20,9 @@ static_assert((3 * kDiffBits + 3) + kDiffBits + 1 <= 126, "chord |s| d: s < 2^81
 
 int sign(i128 v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 
-/// det[b-a; c-a; d-a]: positive when d lies on the positive side of the plane
-/// (a, b, c) with normal (b-a) x (c-a).
+/// det[b-a; c-a; d-a] (plane.hpp's grid_orient3d).
 i128 orient3d(const IntPoint& a, const IntPoint& b, const IntPoint& c, const IntPoint& d) {
-  const std::int64_t bx = b.x - a.x, by = b.y - a.y, bz = b.z - a.z;
-  const std::int64_t cx = c.x - a.x, cy = c.y - a.y, cz = c.z - a.z;
-  const std::int64_t dx = d.x - a.x, dy = d.y - a.y, dz = d.z - a.z;
-  const i128 m0 = i128(cy) * dz - i128(cz) * dy;
-  const i128 m1 = i128(cz) * dx - i128(cx) * dz;
-  const i128 m2 = i128(cx) * dy - i128(cy) * dx;
-  return bx * m0 + by * m1 + bz * m2;
+  return grid_orient3d(a, b, c, d);
 }
 
 /// orient3d(t[0], t[1], t[2], p) = n . (p - t[0]) with the stored normal n:

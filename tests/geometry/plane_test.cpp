@@ -62,6 +62,28 @@ TEST(GeometryPlane, GridNormalMatchesOracleAtFullRange) {
   EXPECT_GE(zero, 1);
 }
 
+TEST(GeometryPlane, GridOrient3dMatchesOracleAtFullRange) {
+  // Random quadruples at the corners of the range and uniform, plus
+  // coplanar ones (d on the plane of a, b, c by construction: zero).
+  Gen g(11);
+  int max_bits = 0, zeros = 0;
+  for (int i = 0; i < 40000; ++i) {
+    const IntPoint a = g.point(), b = g.point(), c = g.point();
+    IntPoint d = g.point();
+    if (i % 8 == 0) d = IntPoint{a.x + (b.x - a.x) / 2, a.y + (b.y - a.y) / 2, a.z + (b.z - a.z) / 2};  // on line ab
+    const MpPlane o = oracle_support(a, b, c);
+    const mpz_class want = dot(o, to_mp(d));
+    const __int128 got = grid_orient3d(a, b, c, d);
+    ASSERT_EQ(mpz_class(static_cast<long>(got >> 64)) * mpz_class("18446744073709551616") +
+                  mpz_class(static_cast<unsigned long>(static_cast<std::uint64_t>(got))),
+              want);
+    max_bits = std::max(max_bits, bits_of(want));
+    zeros += want == 0;
+  }
+  EXPECT_GE(max_bits, 78);  // the corner quadruples reach the bound's order
+  EXPECT_GE(zeros, 1000);
+}
+
 TEST(GeometryPlane, SupportingPlaneNormalIsCounterClockwise) {
   const auto p = supporting_plane({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
   ASSERT_TRUE(p);

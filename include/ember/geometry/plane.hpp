@@ -96,6 +96,20 @@ inline __int128 grid_side(const IntPoint& origin, const std::array<std::int64_t,
   return __int128{n[0]} * (p.x - origin.x) + __int128{n[1]} * (p.y - origin.y) + __int128{n[2]} * (p.z - origin.z);
 }
 
+/// det[b - a; c - a; d - a] = ((b - a) x (c - a)) . (d - a) exactly, for
+/// grid points: positive when d lies on the positive side of the plane
+/// (a, b, c) with normal (b - a) x (c - a). Differences are below 2^26, the
+/// cross product's components below 2^53 (int64) and the sum of three
+/// products below 2^81 (__int128).
+inline __int128 grid_orient3d(const IntPoint& a, const IntPoint& b, const IntPoint& c, const IntPoint& d) {
+  static_assert(kCoordLimit <= (std::int64_t{1} << 25) && 2 * 26 + 1 < 63 && 53 + 26 + 2 < 127,
+                "grid orient3d: differences < 2^26, cross product < 2^53 in int64, three terms < 2^81");
+  const std::int64_t bx = b.x - a.x, by = b.y - a.y, bz = b.z - a.z;
+  const std::int64_t cx = c.x - a.x, cy = c.y - a.y, cz = c.z - a.z;
+  return __int128{by * cz - bz * cy} * (d.x - a.x) + __int128{bz * cx - bx * cz} * (d.y - a.y) +
+         __int128{bx * cy - by * cx} * (d.z - a.z);
+}
+
 /// Axis (0, 1, 2) of the largest |normal component|; ties go to the lowest index.
 inline int dominant_axis(const Plane& p) {
   const std::int64_t ax = p.a.abs().raw(), ay = p.b.abs().raw(), az = p.c.abs().raw();
