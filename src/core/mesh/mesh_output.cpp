@@ -258,7 +258,7 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
     for (const std::uint32_t p : regions.pieces(failed_regions[i])) {
       std::vector<std::uint32_t> loop;
       piece_loop(polys[p], cycles[p], loop);
-      if (loop.size() >= 3) triangulate_loop(std::move(loop), region.plane, verts, rt.tris);
+      if (loop.size() >= 3) triangulate_loop(loop, region.plane, verts, rt.tris);
       rt.source.resize(rt.tris.size(), polys[p].id);
     }
   });

@@ -193,7 +193,7 @@ bool triangulate_region(const Regions& regions, std::uint32_t region, const Outp
 
 /// Ear-clips one cyclic polygon (no holes) given as vertex ids, counter-
 /// clockwise around `plane`. False if no valid ear can be found.
-bool triangulate_loop(std::vector<std::uint32_t> loop, const Plane& plane, const OutputVertices& verts,
+bool triangulate_loop(std::span<const std::uint32_t> loop, const Plane& plane, const OutputVertices& verts,
                       std::vector<std::array<std::uint32_t, 3>>& out);
 
 /// Ear-clips a polygon with holes: `outer` counter-clockwise around `plane`,

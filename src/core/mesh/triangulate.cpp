@@ -9,7 +9,6 @@
 #include <array>
 #include <cmath>
 #include <optional>
-#include <queue>
 #include <span>
 
 #include "core/mesh/mesh_output.hpp"
@@ -167,13 +166,34 @@ bool bridge_hole(const Ctx& k, std::vector<std::uint32_t>& outer, const std::vec
 
 }  // namespace
 
-bool triangulate_loop(std::vector<std::uint32_t> loop, const Plane& plane, const OutputVertices& verts,
-                      std::vector<std::array<std::uint32_t, 3>>& out) {
-  const Ctx k{verts, plane};
+namespace {
+
+/// One vertex of a loop being clipped: its neighbours still in the loop,
+/// and the version of its newest queue entry (older entries are stale).
+struct EarNode {
+  std::uint32_t prev = 0, next = 0, version = 0;
+  bool removed = false;
+};
+
+/// A queued ear: the clipper takes the best quality first, the lowest
+/// vertex on ties.
+struct EarCandidate {
+  double q;
+  std::uint32_t node, version;
+  bool operator<(const EarCandidate& o) const { return q != o.q ? q < o.q : node > o.node; }
+};
+
+/// The ear clipping of `loop` with working memory `node` (one per vertex)
+/// and `heap` (room for 2 n entries: it starts with n and each clip pops at
+/// least one and pushes two, n - 3 times). The heap is std::priority_queue's
+/// (push_heap / pop_heap), so the ears come in the same order whatever
+/// memory holds them.
+bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarNode> node,
+               std::span<EarCandidate> heap, std::vector<std::array<std::uint32_t, 3>>& out) {
   const std::size_t before = out.size();
-  std::size_t n = loop.size();
-  std::vector<std::size_t> prev(n), next(n);
-  for (std::size_t i = 0; i < n; ++i) prev[i] = (i + n - 1) % n, next[i] = (i + 1) % n;
+  const std::uint32_t size = static_cast<std::uint32_t>(loop.size());
+  std::size_t n = size;
+  for (std::uint32_t i = 0; i < size; ++i) node[i] = {i == 0 ? size - 1 : i - 1, i + 1 == size ? 0 : i + 1, 0, false};
   // Conservative double boxes: Point::f errs < 8 ulp; 2^-40 relative covers it.
   auto box_excludes = [&](std::size_t a, std::size_t b, std::size_t c, std::size_t x) {
     for (int axis = 0; axis < 3; ++axis) {
@@ -185,10 +205,10 @@ bool triangulate_loop(std::vector<std::uint32_t> loop, const Plane& plane, const
     }
     return false;
   };
-  auto is_ear = [&](std::size_t b) {
-    const std::size_t a = prev[b], c = next[b];
+  auto is_ear = [&](std::uint32_t b) {
+    const std::uint32_t a = node[b].prev, c = node[b].next;
     if (k.orient(loop[a], loop[b], loop[c]) <= 0) return false;
-    for (std::size_t x = next[c]; x != a; x = next[x]) {
+    for (std::uint32_t x = node[c].next; x != a; x = node[x].next) {
       const std::uint32_t v = loop[x];
       if (v == loop[a] || v == loop[b] || v == loop[c] || box_excludes(a, b, c, x)) continue;
       if (k.orient(loop[a], loop[b], v) >= 0 && k.orient(loop[b], loop[c], v) >= 0 &&
@@ -201,8 +221,8 @@ bool triangulate_loop(std::vector<std::uint32_t> loop, const Plane& plane, const
   // reason): an ear at a nearly straight vertex would be a sliver, whose tiny
   // height the rounding to double and a later re-quantization can flip. The
   // shape is judged in doubles; validity is always decided exactly.
-  auto quality = [&](std::size_t b) {
-    const auto &fa = k.pt(loop[prev[b]]).f, &fb = k.pt(loop[b]).f, &fc = k.pt(loop[next[b]]).f;
+  auto quality = [&](std::uint32_t b) {
+    const auto &fa = k.pt(loop[node[b].prev]).f, &fb = k.pt(loop[b]).f, &fc = k.pt(loop[node[b].next]).f;
     const double ux = fb[0] - fa[0], uy = fb[1] - fa[1], uz = fb[2] - fa[2];
     const double vx = fc[0] - fb[0], vy = fc[1] - fb[1], vz = fc[2] - fb[2];
     const double wx = fa[0] - fc[0], wy = fa[1] - fc[1], wz = fa[2] - fc[2];
@@ -210,24 +230,19 @@ bool triangulate_loop(std::vector<std::uint32_t> loop, const Plane& plane, const
     const double l2 = ux * ux + uy * uy + uz * uz + vx * vx + vy * vy + vz * vz + wx * wx + wy * wy + wz * wz;
     return l2 > 0 ? std::sqrt(cx * cx + cy * cy + cz * cz) / l2 : 0.0;
   };
-  struct Candidate {
-    double q;
-    std::size_t node;
-    std::uint32_t version;
-    bool operator<(const Candidate& o) const { return q != o.q ? q < o.q : node > o.node; }
+  std::size_t queued = 0;
+  auto push = [&](std::uint32_t b) {
+    heap[queued++] = {quality(b), b, ++node[b].version};
+    std::push_heap(heap.begin(), heap.begin() + static_cast<std::ptrdiff_t>(queued));
   };
-  std::vector<std::uint32_t> version(loop.size(), 0);
-  std::vector<char> removed(loop.size(), 0);
-  std::priority_queue<Candidate> heap;
-  auto push = [&](std::size_t b) { heap.push({quality(b), b, ++version[b]}); };
   auto push_all = [&] {
-    for (std::size_t i = 0; i < loop.size(); ++i)
-      if (!removed[i]) push(i);
+    for (std::uint32_t i = 0; i < size; ++i)
+      if (!node[i].removed) push(i);
   };
   push_all();
   bool refilled = false;
   while (n > 3) {
-    if (heap.empty()) {
+    if (queued == 0) {
       if (refilled) {  // a whole round without a valid ear
         out.resize(before);
         return false;
@@ -236,27 +251,47 @@ bool triangulate_loop(std::vector<std::uint32_t> loop, const Plane& plane, const
       refilled = true;
       continue;
     }
-    const Candidate c = heap.top();
-    heap.pop();
-    if (removed[c.node] || c.version != version[c.node] || !is_ear(c.node)) continue;
-    const std::size_t b = c.node, a = prev[b], d = next[b];
+    std::pop_heap(heap.begin(), heap.begin() + static_cast<std::ptrdiff_t>(queued));
+    const EarCandidate c = heap[--queued];
+    if (node[c.node].removed || c.version != node[c.node].version || !is_ear(c.node)) continue;
+    const std::uint32_t b = c.node, a = node[b].prev, d = node[b].next;
     out.push_back({loop[a], loop[b], loop[d]});
-    next[a] = d;
-    prev[d] = a;
-    removed[b] = 1;
+    node[a].next = d;
+    node[d].prev = a;
+    node[b].removed = true;
     --n;
     push(a);
     push(d);
     refilled = false;
   }
-  std::size_t cur = 0;
-  while (removed[cur]) ++cur;
-  if (k.orient(loop[prev[cur]], loop[cur], loop[next[cur]]) <= 0) {
+  std::uint32_t cur = 0;
+  while (node[cur].removed) ++cur;
+  const std::uint32_t a = node[cur].prev, c = node[cur].next;
+  if (k.orient(loop[a], loop[cur], loop[c]) <= 0) {
     out.resize(before);
     return false;
   }
-  out.push_back({loop[prev[cur]], loop[cur], loop[next[cur]]});
+  out.push_back({loop[a], loop[cur], loop[c]});
   return true;
+}
+
+}  // namespace
+
+bool triangulate_loop(std::span<const std::uint32_t> loop, const Plane& plane, const OutputVertices& verts,
+                      std::vector<std::array<std::uint32_t, 3>>& out) {
+  const Ctx k{verts, plane};
+  // Most loops are small (the direct route's faces: a handful of vertices):
+  // their working memory lives on the stack, which saved the route a third
+  // of its ear clipping's instructions in allocations.
+  constexpr std::size_t kSmall = 16;
+  if (loop.size() <= kSmall) {
+    std::array<EarNode, kSmall> node;
+    std::array<EarCandidate, 2 * kSmall> heap;
+    return clip_ears(k, loop, node, heap, out);
+  }
+  std::vector<EarNode> node(loop.size());
+  std::vector<EarCandidate> heap(2 * loop.size());
+  return clip_ears(k, loop, node, heap, out);
 }
 
 bool triangulate_region(const Regions& regions, std::uint32_t region, const OutputVertices& verts,
@@ -316,7 +351,7 @@ bool triangulate_with_holes(std::vector<std::uint32_t> outer, std::vector<std::v
     const std::span<const std::vector<std::uint32_t>> rest(holes.data() + i + 1, holes.size() - i - 1);
     if (!bridge_hole(k, outer, holes[i], rest)) return false;
   }
-  return triangulate_loop(std::move(outer), plane, verts, out);
+  return triangulate_loop(outer, plane, verts, out);
 }
 
 int loop_orientation_in_plane(const std::vector<std::uint32_t>& loop, const Plane& plane, const OutputVertices& verts) {
