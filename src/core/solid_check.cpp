@@ -147,7 +147,17 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
                       for (std::size_t i = r.begin(); i != r.end(); ++i)
                         tris[i] = contact_triangle(grid.corners[members[i]], grid.vertex_ids[members[i]]);
                     });
-  certify_embedded_stars(tris);  // tris holds all of the operand's triangles, as a star must
+  // tris holds all of the operand's triangles, as a star must. They are
+  // the grid's triangles members[0] .. members[0] + size - 1 (an operand's
+  // polygons are consecutive in the root soup), whose neighbours are stars'
+  // next triangles; were they not consecutive, ids outside would count as no
+  // neighbour and certify nothing, never too much.
+  const bool consecutive = members.back() - members.front() + 1 == members.size();
+  certify_embedded_stars(tris,
+                         consecutive ? std::span<const std::array<std::uint32_t, 3>>(grid.neighbors.data() + members.front(),
+                                                                                      members.size())
+                                     : std::span<const std::array<std::uint32_t, 3>>(),
+                         members.front());
   if (tree && tree->size() != tris.size()) tree = nullptr;  // not this operand's: build one
   const ContactSearchResult contacts = find_contacts(tris, OperandReport::kMaxReportedPairs, tree, intersecting);
   tris = {};

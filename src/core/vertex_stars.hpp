@@ -24,16 +24,17 @@
 // projection, a valence past kMaxValence) is not certified, and its pairs
 // get the exact test as before.
 //
-// Winding once, exactly: take e_0 = w_0 - v as angle 0 and s = d x e_0. A
-// direction e is in the upper half (0, pi) iff e . s > 0 (it is
-// d . (e_0 x e)), else in the closed lower half [pi, 2 pi] (e . s = 0: the
-// projection is parallel to e_0's, at pi or at a full turn). Every step
+// Winding once, exactly: take e_0 = w_0 - v as angle 0. A direction e is in
+// the upper half (0, pi) iff d . (e_0 x e) > 0, else in the closed lower
+// half [pi, 2 pi] (= 0: the projection is parallel to e_0's, at pi or at a
+// full turn). Every step
 // e_i -> e_{i+1} turns counter-clockwise by less than pi, so a step wraps
 // past angle 0 (2 pi) exactly when it goes from the lower half to the upper
 // one, and the last step back to e_0 always wraps: the winding number is
 // 1 + (lower -> upper steps).
 // Bits: normals < 2^53, so |d| < 2^63 for m <= 1024 and d . n < 2^118;
-// s < 2^90 and e . s < 2^118: all in __int128.
+// e_0 x e < 2^53 (int64: differences < 2^26) and d . (e_0 x e) < 3 * 2^116,
+// in __int128 (one 64 x 64 -> 128-bit product per term).
 #include <span>
 
 #include "core/solid_check.hpp"
@@ -45,8 +46,14 @@ inline constexpr std::size_t kMaxValence = 1024;
 
 /// Sets ContactTriangle::embedded for `tris`, which must be *all* of an
 /// operand's triangles (a star is every triangle at a vertex): bit k when
-/// the star of corner k's vertex is certified. Deterministic, parallel
+/// the star of corner k's vertex is certified. neighbours[i][k] is the
+/// triangle across edge k of tris[i] (from corner k to corner k + 1) when
+/// that edge is manifold (two uses, opposite directions:
+/// GridTriangles::neighbors), as first_id + its index in tris, else
+/// kNoNeighbor; ids outside tris count as none. The stars are walked
+/// through these neighbours, O(valence) each. Deterministic, parallel
 /// (oneTBB) in the caller's arena.
-void certify_embedded_stars(std::span<ContactTriangle> tris);
+void certify_embedded_stars(std::span<ContactTriangle> tris, std::span<const std::array<std::uint32_t, 3>> neighbours,
+                            std::uint32_t first_id = 0);
 
 }  // namespace ember::core

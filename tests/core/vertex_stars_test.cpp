@@ -40,9 +40,9 @@ std::size_t certified_corners(const std::vector<core::ContactTriangle>& tris) {
   return n;
 }
 
-/// Certifies `tris` and returns them.
+/// Certifies `tris` (neighbours by edge matching) and returns them.
 std::vector<core::ContactTriangle> certified(std::vector<core::ContactTriangle> tris) {
-  core::certify_embedded_stars(tris);
+  core::certify_embedded_stars(tris, manifold_neighbours(tris));
   return tris;
 }
 
