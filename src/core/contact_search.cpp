@@ -135,13 +135,16 @@ class Search {
 
   /// The exact test for every pair of boxes that meet between leaf nodes a
   /// and b (a == b: the pairs within one leaf).
-  void leaf_pairs(std::size_t a, std::size_t b, std::size_t& examined) {
+  /// Wide: with the 8-lane leaf tests (wide_lanes.hpp); always inlined, so
+  /// that each caller below compiles it for its own instruction set.
+  template <bool Wide>
+  [[gnu::always_inline]] inline void leaf_pairs_with(std::size_t a, std::size_t b, std::size_t& examined) {
     const std::size_t ab = tree().leaf_slots(a).first;
     const auto [bb, be] = tree().leaf_slots(b);
     if (ab >= tree().size()) return;  // a leaf past the last triangle (self() does not test its box)
     // a's triangles whose boxes meet b's node box, eight at a time (one test
     // per triangle of a instead of one per pair).
-    for (unsigned near = tree().overlap_mask(a, tree().node(b)); near != 0; near &= near - 1) {
+    for (unsigned near = tree().overlap_mask_in<Wide>(a, tree().node(b)); near != 0; near &= near - 1) {
       const std::size_t i = ab + static_cast<std::size_t>(std::countr_zero(near));
       const Box32 box = tree().box(i);
       const std::size_t from = a == b ? i + 1 : bb;
@@ -151,14 +154,14 @@ class Search {
       // (triangles_meet_improperly's first answer): when all three of i's
       // are, its neighbours need no test.
       const ContactTriangle& ti = tris_[tree().item(i)];
-      unsigned candidates = tree().overlap_mask(b, box) & (~0u << (from - bb));
+      unsigned candidates = tree().overlap_mask_in<Wide>(b, box) & (~0u << (from - bb));
       if (candidates == 0) continue;
-      const LeafVertexIds::Masks shared = ids_->shared_masks(b, ti.id);
+      const LeafVertexIds::Masks shared = ids_->shared_masks_in<Wide>(b, ti.id);
       if (ti.embedded == 7) candidates &= ~shared.neighbours;
       // Boxes that meet, diagonal extents that do not: long slivers across
       // the axes (EMBER case 582, pair020: 60-70% of the pairs the boxes
       // leave), dismissed for a fraction of the exact test's cost.
-      if (candidates != 0) candidates &= ~diagonals_->apart_mask(b, diagonals_->extent(i));
+      if (candidates != 0) candidates &= ~diagonals_->apart_mask_in<Wide>(b, diagonals_->extent(i));
       if (candidates == 0) continue;
       for (unsigned m = candidates; m != 0; m &= m - 1) {
         const int slot = std::countr_zero(m);
@@ -176,6 +179,18 @@ class Search {
     if (examined >= kFlush) flush(examined);
   }
 
+  void leaf_pairs(std::size_t a, std::size_t b, std::size_t& examined) {
+#if EMBER_WIDE_LANES
+    if (wide_) return leaf_pairs_wide(a, b, examined);
+#endif
+    leaf_pairs_with<false>(a, b, examined);
+  }
+#if EMBER_WIDE_LANES
+  EMBER_TARGET_AVX2 void leaf_pairs_wide(std::size_t a, std::size_t b, std::size_t& examined) {
+    leaf_pairs_with<true>(a, b, examined);
+  }
+#endif
+
   std::span<const ContactTriangle> tris_;
   TriangleTree own_tree_;  ///< when the caller gave none
   std::optional<LeafVertexIds> ids_;
@@ -188,6 +203,7 @@ class Search {
   std::atomic<std::size_t> examined_{0};
   std::atomic<bool> gave_up_{false};
   std::atomic<bool>* found_one_ = nullptr;
+  bool wide_ = cpu_has_avx2();
 };
 
 }  // namespace

@@ -73,6 +73,29 @@ class LeafDiagonals {
 #endif
   }
 
+#if EMBER_WIDE_LANES
+  /// The same in eight lanes at once (wide_lanes.hpp): only where cpu_has_avx2().
+  EMBER_TARGET_AVX2 unsigned apart_mask_avx2(std::size_t leaf_node, const DiagonalExtent& e) const {
+    const Block& b = block_[leaf_node - first_leaf_];
+    __m256i apart = _mm256_setzero_si256();
+    for (std::size_t d = 0; d < 4; ++d) {
+      const __m256i lo = _mm256_set1_epi32(static_cast<std::int32_t>(e.lo[d]));
+      const __m256i hi = _mm256_set1_epi32(static_cast<std::int32_t>(e.hi[d]));
+      apart = _mm256_or_si256(apart, _mm256_or_si256(_mm256_cmpgt_epi32(lanes8(b.lo[d]), hi), _mm256_cmpgt_epi32(lo, lanes8(b.hi[d]))));
+    }
+    return mask8(apart);
+  }
+#endif
+
+  /// apart_mask, in eight lanes when Wide (only where cpu_has_avx2()).
+  template <bool Wide>
+  [[gnu::always_inline]] unsigned apart_mask_in(std::size_t leaf_node, const DiagonalExtent& e) const {
+#if EMBER_WIDE_LANES
+    if constexpr (Wide) return apart_mask_avx2(leaf_node, e);
+#endif
+    return apart_mask(leaf_node, e);
+  }
+
   /// The same without vector instructions (what apart_mask is where SSE2 is missing).
   unsigned apart_mask_portable(std::size_t leaf_node, const DiagonalExtent& e) const {
     const Block& b = block_[leaf_node - first_leaf_];

@@ -66,6 +66,33 @@ class LeafVertexIds {
 #endif
   }
 
+#if EMBER_WIDE_LANES
+  /// The same in eight lanes at once (wide_lanes.hpp): only where cpu_has_avx2().
+  EMBER_TARGET_AVX2 Masks shared_masks_avx2(std::size_t leaf_node, const std::array<std::uint32_t, 3>& ids) const {
+    const Block& b = block_[leaf_node - first_leaf_];
+    // Per slot minus the number of shared vertices: each match adds -1.
+    __m256i count = _mm256_setzero_si256();
+    for (int c = 0; c < 3; ++c) {
+      const __m256i slot = lanes8(b.id[c]);
+      for (const std::uint32_t v : ids)
+        count = _mm256_add_epi32(count, _mm256_cmpeq_epi32(slot, _mm256_set1_epi32(static_cast<int>(v))));
+    }
+    const unsigned one_or_two = mask8(_mm256_or_si256(_mm256_cmpeq_epi32(count, _mm256_set1_epi32(-1)),
+                                                      _mm256_cmpeq_epi32(count, _mm256_set1_epi32(-2))));
+    const unsigned any = ~mask8(_mm256_cmpeq_epi32(count, _mm256_setzero_si256())) & 0xffu;
+    return {one_or_two, any};
+  }
+#endif
+
+  /// shared_masks, in eight lanes when Wide (only where cpu_has_avx2()).
+  template <bool Wide>
+  [[gnu::always_inline]] Masks shared_masks_in(std::size_t leaf_node, const std::array<std::uint32_t, 3>& ids) const {
+#if EMBER_WIDE_LANES
+    if constexpr (Wide) return shared_masks_avx2(leaf_node, ids);
+#endif
+    return shared_masks(leaf_node, ids);
+  }
+
   /// The same without vector instructions (what shared_masks is where SSE2 is missing).
   Masks shared_masks_portable(std::size_t leaf_node, const std::array<std::uint32_t, 3>& ids) const {
     const Block& b = block_[leaf_node - first_leaf_];

@@ -46,16 +46,16 @@ static_assert(!more_than_two_bits(0b101) && more_than_two_bits(0b10101) && !more
 /// (apart_triangles_meet). Reported as (x's id, y's id), or swapped.
 /// Inlined: it runs once per leaf pair, most of which test few pairs (as a
 /// call it cost the bunny pair's union 0.4% more instructions).
-template <bool swap>
+template <bool swap, bool Wide>
 [[gnu::always_inline]] inline void leaf_meeting_pairs(const GridTriangles& grid, const TriangleTree& X,
                                                       std::uint32_t x_base, std::size_t x, const TriangleTree& Y,
                                                       std::uint32_t y_base, std::size_t y, PairSink& sink) {
   const std::size_t xb = X.leaf_slots(x).first, yb = Y.leaf_slots(y).first;
   const Box32 y_box = Y.node(y);
   // x's triangles whose boxes meet y's node box, eight at a time.
-  for (unsigned near = X.overlap_mask(x, y_box); near != 0; near &= near - 1) {
+  for (unsigned near = X.overlap_mask_in<Wide>(x, y_box); near != 0; near &= near - 1) {
     const std::size_t i = xb + static_cast<std::size_t>(std::countr_zero(near));
-    unsigned m = Y.overlap_mask(y, X.box(i));
+    unsigned m = Y.overlap_mask_in<Wide>(y, X.box(i));
     if (m == 0) continue;
     const std::uint32_t ix = x_base + X.item(i);
     const std::array<IntPoint, 3>& tx = grid.corners[ix];
@@ -73,29 +73,48 @@ template <bool swap>
   }
 }
 
+/// The meeting pairs of leaves a of A and b of B (leaf_meeting_pairs).
+/// The first test of a pair (the other's corners against one plane)
+/// rejects most pairs, but only with the larger triangle's plane: a small
+/// triangle beside a large one's plane has the large one crossing its own
+/// (pair001, a bunny and a CAD part: 85% of the pairs passed the test by
+/// a's plane and failed the one by b's). Which is larger is judged once per
+/// leaf pair, by the leaves' boxes. The answer is exact either way, and the
+/// pairs are sorted after. Wide: the 8-lane leaf tests (wide_lanes.hpp).
+template <bool Wide>
+[[gnu::always_inline]] inline void leaf_pair(const GridTriangles& grid, const TriangleTree& A, std::uint32_t a_base,
+                                             std::size_t a, const TriangleTree& B, std::uint32_t b_base, std::size_t b,
+                                             PairSink& sink) {
+  if (extent(B.node(b)) > 2 * extent(A.node(a))) {
+    leaf_meeting_pairs<true, Wide>(grid, B, b_base, b, A, a_base, a, sink);
+  } else {
+    leaf_meeting_pairs<false, Wide>(grid, A, a_base, a, B, b_base, b, sink);
+  }
+}
+
+#if EMBER_WIDE_LANES
+EMBER_TARGET_AVX2 void leaf_pair_wide(const GridTriangles& grid, const TriangleTree& A, std::uint32_t a_base,
+                                      std::size_t a, const TriangleTree& B, std::uint32_t b_base, std::size_t b,
+                                      PairSink& sink) {
+  leaf_pair<true>(grid, A, a_base, a, B, b_base, b, sink);
+}
+#endif
+
 /// Collects every pair of A x B that meets (boxes first, then exactly:
 /// triangles_meet), in subtrees a of A at depth da and b of B at depth db,
 /// whose boxes overlap (the caller tests them: most child pairs do not
 /// overlap, and the test costs less than a call). Stops early once `stop` is
-/// set (the run is abandoned: the pairs are not used).
+/// set (the run is abandoned: the pairs are not used). wide: cpu_has_avx2().
 void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32_t a_base, std::size_t a, int da,
                    const TriangleTree& B, std::uint32_t b_base, std::size_t b, int db, PairSink& sink,
-                   const std::atomic<bool>& stop) {
+                   const std::atomic<bool>& stop, bool wide) {
   const bool a_leaf = da == A.depth(), b_leaf = db == B.depth();
   if (a_leaf && b_leaf) {
     if (A.leaf_slots(a).first >= A.size() || B.leaf_slots(b).first >= B.size()) return;  // empty leaves
-    // The first test of a pair (the other's corners against one plane)
-    // rejects most pairs, but only with the larger triangle's plane: a small
-    // triangle beside a large one's plane has the large one crossing its own
-    // (pair001, a bunny and a CAD part: 85% of the pairs passed the test by
-    // a's plane and failed the one by b's). Which is larger is
-    // judged once per leaf pair, by the leaves' boxes. The answer is exact
-    // either way, and the pairs are sorted after.
-    if (extent(B.node(b)) > 2 * extent(A.node(a))) {
-      leaf_meeting_pairs<true>(grid, B, b_base, b, A, a_base, a, sink);
-    } else {
-      leaf_meeting_pairs<false>(grid, A, a_base, a, B, b_base, b, sink);
-    }
+#if EMBER_WIDE_LANES
+    if (wide) return leaf_pair_wide(grid, A, a_base, a, B, b_base, b, sink);
+#endif
+    leaf_pair<false>(grid, A, a_base, a, B, b_base, b, sink);
     return;
   }
   // Descend the side with more levels below (node sizes stay alike); large
@@ -105,10 +124,10 @@ void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32
   const auto child = [&](int c) {
     if (split_a) {
       const std::size_t ac = 2 * a + 1 + static_cast<std::size_t>(c);
-      if (overlap(A.node(ac), B.node(b))) meeting_pairs(grid, A, a_base, ac, da + 1, B, b_base, b, db, sink, stop);
+      if (overlap(A.node(ac), B.node(b))) meeting_pairs(grid, A, a_base, ac, da + 1, B, b_base, b, db, sink, stop, wide);
     } else {
       const std::size_t bc = 2 * b + 1 + static_cast<std::size_t>(c);
-      if (overlap(A.node(a), B.node(bc))) meeting_pairs(grid, A, a_base, a, da, B, b_base, bc, db + 1, sink, stop);
+      if (overlap(A.node(a), B.node(bc))) meeting_pairs(grid, A, a_base, a, da, B, b_base, bc, db + 1, sink, stop, wide);
     }
   };
   if ((split_a ? A.depth() - da : B.depth() - db) >= kParallelLevels) {
@@ -128,12 +147,13 @@ void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32
 Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std::size_t n,
                        const std::atomic<bool>& stop) {
   PairSink sink;
+  const bool wide = cpu_has_avx2();
   const std::size_t operands = trees.tree.size();
   for (std::size_t a = 0; a < operands; ++a)
     for (std::size_t b = a + 1; b < operands; ++b) {
       const TriangleTree &A = trees.tree[a], &B = trees.tree[b];
       if (!A.empty() && !B.empty() && overlap(A.node(0), B.node(0)))
-        meeting_pairs(grid, A, trees.begin[a], 0, 0, B, trees.begin[b], 0, 0, sink, stop);
+        meeting_pairs(grid, A, trees.begin[a], 0, 0, B, trees.begin[b], 0, 0, sink, stop, wide);
     }
   // Counting sort by triangle, then each list ascending (lists are short,
   // and the result does not depend on the order pairs were found in).

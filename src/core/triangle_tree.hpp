@@ -22,6 +22,7 @@
 #include <span>
 #include <vector>
 
+#include "core/wide_lanes.hpp"
 #include "ember/geometry/plane.hpp"
 
 namespace ember::core {
@@ -103,6 +104,18 @@ class TriangleTree {
   [[gnu::always_inline]] inline unsigned overlap_mask(std::size_t leaf_node, const Box32& query) const;
   /// The same without vector instructions (what overlap_mask is where SSE2 is missing).
   unsigned overlap_mask_portable(std::size_t leaf_node, const Box32& query) const;
+#if EMBER_WIDE_LANES
+  /// The same in eight lanes at once (wide_lanes.hpp): only where cpu_has_avx2().
+  EMBER_TARGET_AVX2 unsigned overlap_mask_avx2(std::size_t leaf_node, const Box32& query) const;
+#endif
+  /// overlap_mask, in eight lanes when Wide (only where cpu_has_avx2()).
+  template <bool Wide>
+  [[gnu::always_inline]] unsigned overlap_mask_in(std::size_t leaf_node, const Box32& query) const {
+#if EMBER_WIDE_LANES
+    if constexpr (Wide) return overlap_mask_avx2(leaf_node, query);
+#endif
+    return overlap_mask(leaf_node, query);
+  }
   /// Node n's box (heap order: children 2n + 1, 2n + 2; root 0).
   const Box32& node(std::size_t n) const { return node_[n]; }
   int depth() const { return depth_; }
@@ -173,6 +186,20 @@ inline unsigned TriangleTree::overlap_mask(std::size_t leaf_node, const Box32& q
   return overlap_mask_portable(leaf_node, q);
 #endif
 }
+
+#if EMBER_WIDE_LANES
+EMBER_TARGET_AVX2 inline unsigned TriangleTree::overlap_mask_avx2(std::size_t leaf_node, const Box32& q) const {
+  assert(leaf_node - first_leaf() < block_.size());
+  const LeafBlock& b = block_[leaf_node - first_leaf()];
+  static_assert(kLeaf == 8, "one 8-lane vector per coordinate");
+  // A slot misses q iff on some axis lo > q.hi or q.lo > hi (signed compares).
+  __m256i miss = _mm256_setzero_si256();
+  for (int a = 0; a < 3; ++a)
+    miss = _mm256_or_si256(miss, _mm256_or_si256(_mm256_cmpgt_epi32(lanes8(b.lo[a]), _mm256_set1_epi32(q.hi[a])),
+                                                 _mm256_cmpgt_epi32(_mm256_set1_epi32(q.lo[a]), lanes8(b.hi[a]))));
+  return ~mask8(miss) & valid_slots(leaf_node);
+}
+#endif
 
 inline unsigned TriangleTree::overlap_mask_portable(std::size_t leaf_node, const Box32& q) const {
   assert(leaf_node - first_leaf() < block_.size());

@@ -1,8 +1,9 @@
 // The proof's diagonal masks (src/core/leaf_diagonals.hpp): per leaf slot,
 // whether its triangle is diagonally apart from a given extent, through
-// vector compares and the portable loop alike, against diagonally_apart pair
-// by pair; at the grid's limits, with touching extents, and with the empty
-// slots of a partly filled last leaf.
+// vector compares (4 lanes, and 8 where the processor has AVX2) and the
+// portable loop alike, against diagonally_apart pair by pair; at the grid's
+// limits, with touching extents, and with the empty slots of a partly filled
+// last leaf.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -49,6 +50,11 @@ TEST(LeafDiagonals, MasksMatchDiagonallyApartPairByPair) {
           const unsigned filled = end - b == 8 ? 0xffu : (1u << (end - b)) - 1;
           ASSERT_EQ(diagonals.apart_mask(leaf, e) & filled, want) << "range " << range << " n " << n;
           ASSERT_EQ(diagonals.apart_mask_portable(leaf, e) & filled, want) << "range " << range << " n " << n;
+#if EMBER_WIDE_LANES
+          if (core::cpu_has_avx2()) {  // the 8-lane test the broad phases take on this processor
+            ASSERT_EQ(diagonals.apart_mask_avx2(leaf, e) & filled, want) << "range " << range << " n " << n;
+          }
+#endif
         }
       }
     }

@@ -1,6 +1,7 @@
 // The proof's neighbour masks (src/core/leaf_vertex_ids.hpp): per leaf
 // slot, whether its triangle shares one or two vertex ids with a given
-// triangle, and whether it shares any, through vector compares and the portable loop alike, against a
+// triangle, and whether it shares any, through vector compares (4 lanes, and
+// 8 where the processor has AVX2) and the portable loop alike, against a
 // brute-force count; empty slots of a partly filled last leaf never answer.
 #include <gtest/gtest.h>
 
@@ -51,6 +52,11 @@ TEST(LeafVertexIds, MasksMatchSharedVertexCounts) {
         }
         ASSERT_TRUE(ids.shared_masks(leaf, query) == want);
         ASSERT_TRUE(ids.shared_masks_portable(leaf, query) == want);
+#if EMBER_WIDE_LANES
+        if (core::cpu_has_avx2()) {
+          ASSERT_TRUE(ids.shared_masks_avx2(leaf, query) == want);  // what the search takes here
+        }
+#endif
       }
     }
   }

@@ -1,8 +1,9 @@
 // The triangle tree (src/core/triangle_tree.hpp): every query finds exactly
 // the boxes that meet it (closed boxes: touching counts), leaf by leaf
-// through the vector overlap mask and its portable twin, including boxes and
-// queries at the int32 limits and partly filled last leaves; and the
-// box-beside-plane filter against GMP.
+// through the vector overlap masks (4 lanes, and 8 where the processor has
+// AVX2) and their portable twin, including boxes and queries at the int32
+// limits and partly filled last leaves; and the box-beside-plane filter
+// against GMP.
 #include <gmpxx.h>
 #include <gtest/gtest.h>
 
@@ -57,6 +58,11 @@ void check_tree(const std::vector<Box32>& boxes, const std::vector<Box32>& queri
       for (std::size_t s = b; s < e; ++s) want |= static_cast<unsigned>(core::overlap(tree.box(s), q)) << (s - b);
       ASSERT_EQ(tree.overlap_mask(leaf, q), want);
       ASSERT_EQ(tree.overlap_mask_portable(leaf, q), want);
+#if EMBER_WIDE_LANES
+      if (core::cpu_has_avx2()) {
+        ASSERT_EQ(tree.overlap_mask_avx2(leaf, q), want);  // what the broad phases take here
+      }
+#endif
     }
   }
 }
