@@ -34,17 +34,16 @@ bool crossing_before(i128 xa, i128 xb, i128 ya, i128 yb) {
   return Int<83>(mag(xa)) * Int<84>(mag(ya - yb)) < Int<83>(mag(ya)) * Int<84>(mag(xa - xb));
 }
 
-bool TriangleCutter::add_chord(std::uint32_t id, const std::array<IntPoint, 3>& c, const std::array<std::int64_t, 3>& n,
-               std::uint32_t f) {
-  const std::array<IntPoint, 3>& d = grid_.corners[f];
-  const std::array<std::int64_t, 3> nf = grid_normal(d[0], d[1], d[2]);
-  i128 st[3], sf[3];  // t's corners against f's plane, f's against t's
+bool pair_chord(const GridTriangles& grid, const EdgeNames& names, std::uint32_t x, std::uint32_t y, PairChord& out) {
+  const std::array<IntPoint, 3>&c = grid.corners[x], &d = grid.corners[y];
+  const std::array<std::int64_t, 3> n = grid_normal(c[0], c[1], c[2]), nf = grid_normal(d[0], d[1], d[2]);
+  i128 st[3], sf[3];  // x's corners against y's plane, y's against x's
   for (int i = 0; i < 3; ++i) {
     st[i] = grid_side(d[0], nf, c[i]);
     sf[i] = grid_side(c[0], n, d[i]);
     if (st[i] == 0 || sf[i] == 0) return false;  // a corner on the other's plane
   }
-  int ends[2], found = 0;
+  int found = 0;
   bool leaves_along_d[2];
   // An edge p -> q of one triangle that crosses the other's plane crosses
   // the other triangle's interior iff it turns the same way around all of
@@ -56,33 +55,45 @@ bool TriangleCutter::add_chord(std::uint32_t id, const std::array<IntPoint, 3>& 
     inside = o0 == o1 && o1 == o2;
     return true;
   };
-  // The end points on t's edges (crossing f), then on f's (crossing t).
-  // d = n_t x n_f points into t from t's edge i -> j iff n_f . (c_j - c_i)
-  // > 0, and into f from f's edge i -> j iff n_t . (d_j - d_i) < 0.
-  for (const bool on_t : {true, false}) {
-    const std::array<IntPoint, 3>& e = on_t ? c : d;
-    const i128* s = on_t ? st : sf;
+  // The end points on x's edges (crossing y), then on y's (crossing x).
+  // d = n_x x n_y points into x from x's edge i -> j iff n_y . (c_j - c_i)
+  // > 0, and into y from y's edge i -> j iff n_x . (d_j - d_i) < 0.
+  for (const bool on_x : {true, false}) {
+    const std::array<IntPoint, 3>& e = on_x ? c : d;
+    const i128* s = on_x ? st : sf;
     for (int i = 0; i < 3; ++i) {
       const int j = i == 2 ? 0 : i + 1;
       if ((s[i] > 0) == (s[j] > 0)) continue;
       int inside = 0;
-      if (!crossing(e[i], e[j], on_t ? d : c, inside)) return false;
+      if (!crossing(e[i], e[j], on_x ? d : c, inside)) return false;
       if (!inside) continue;
       if (found == 2) return false;
-      const int x = static_cast<int>(cross_.size());
-      cross_.emplace_back();
-      cross_[x].name = on_t ? CrossingName{edge_key(id, i), f} : CrossingName{edge_key(f, i), id};
-      cross_[x].point = crossing_point(e[i], e[j], s[i], s[j]);
-      if (on_t) cross_[x].edge = i, cross_[x].sa = s[i], cross_[x].sb = s[j];
-      leaves_along_d[found] = on_t ? s[j] > 0 : s[j] < 0;
-      ends[found++] = x;
+      ChordEnd& end = out.end[static_cast<std::size_t>(found)];
+      end.name = on_x ? CrossingName{names.edge_key(x, i), y} : CrossingName{names.edge_key(y, i), x};
+      end.point = crossing_point(e[i], e[j], s[i], s[j]);
+      end.sa = s[i], end.sb = s[j];
+      end.edge = static_cast<std::uint8_t>(i);
+      end.on_y = !on_x;
+      leaves_along_d[found++] = on_x ? s[j] > 0 : s[j] < 0;
     }
   }
   if (found != 2 || leaves_along_d[0] == leaves_along_d[1]) return false;
-  const int from = leaves_along_d[0] ? ends[0] : ends[1], to = leaves_along_d[0] ? ends[1] : ends[0];
-  cross_[from].next = to;
-  cross_[to].prev = from;
+  if (leaves_along_d[1]) std::swap(out.end[0], out.end[1]);  // end[0]: the start, from which the chord runs along d
   return true;
+}
+
+void TriangleCutter::add_chord(const ChordRef& r) {
+  const int base = static_cast<int>(cross_.size());
+  for (const ChordEnd& e : r.chord->end) {
+    Crossing& x = cross_.emplace_back();
+    x.name = e.name;
+    x.point = e.point;
+    if (e.on_y == r.reversed) x.edge = e.edge, x.sa = e.sa, x.sb = e.sb;  // on this triangle's own edge
+  }
+  // Seen from y, n_y x n_x reverses the chord.
+  const int from = base + (r.reversed ? 1 : 0), to = base + (r.reversed ? 0 : 1);
+  cross_[static_cast<std::size_t>(from)].next = to;
+  cross_[static_cast<std::size_t>(to)].prev = from;
 }
 
 bool TriangleCutter::merge_equal_names() {

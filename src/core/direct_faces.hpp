@@ -48,13 +48,57 @@ struct CutFaces {
   std::size_t faces = 0;
 };
 
+/// Vertex and edge names of the triangles of two operands: input vertex ids
+/// (the operand's base plus its welded id), an edge as its two ids.
+struct EdgeNames {
+  const InputTopology& topo;
+  const std::vector<std::uint32_t>& operand_of;
+  std::uint32_t vertex(std::uint32_t t, int k) const {
+    return topo.operand_base[operand_of[t]] + topo.by_triangle[t][static_cast<std::size_t>(k)];
+  }
+  std::uint64_t edge_key(std::uint32_t t, int k) const {
+    const std::uint64_t u = vertex(t, k), v = vertex(t, k == 2 ? 0 : k + 1);
+    return std::min(u, v) << 32 | std::max(u, v);
+  }
+};
+
+/// An end point of the chord in which meeting triangles x and y cross: where
+/// an edge of one crosses the other's interior.
+struct ChordEnd {
+  CrossingName name;
+  Point point;
+  __int128 sa = 0, sb = 0;  ///< the sides of its edge's end points against the other's plane
+  std::uint8_t edge = 0;    ///< that edge (of y if on_y, else of x)
+  bool on_y = false;
+};
+
+/// The chord of a meeting pair x < y, end[0] to end[1] in the direction
+/// d = n_x x n_y: the inside of y's solid on its left, seen from x's front.
+/// Seen from y, d is reversed (n_y x n_x), so the chord runs end[1] to end[0].
+struct PairChord {
+  std::array<ChordEnd, 2> end;
+};
+
+/// The chord of x < y (triangles of different operands whose closed sets
+/// meet); false unless they meet in general position (no corner on the
+/// other's plane, no edge meeting an edge of the other, one segment).
+/// Each pair's chord is computed once and read by both triangles.
+bool pair_chord(const GridTriangles& grid, const EdgeNames& names, std::uint32_t x, std::uint32_t y, PairChord& out);
+
+/// A touched triangle's view of one of its chords: `reversed` when it is
+/// the pair's y (the larger id).
+struct ChordRef {
+  const PairChord* chord = nullptr;
+  bool reversed = false;
+};
+
 /// One touched triangle cut by its partners into faces; the kept faces'
 /// triangles appended to a CutFaces.
 class TriangleCutter {
  public:
   TriangleCutter(const GridTriangles& grid, const InputTopology& topology, const SolveContext& ctx,
                  const std::vector<std::uint32_t>& operand_of)
-      : grid_(grid), topo_(topology), ctx_(ctx), operand_of_(operand_of) {
+      : grid_(grid), names_{topology, operand_of}, ctx_(ctx), operand_of_(operand_of) {
     front_.resize(2);
     back_.resize(2);
     local_.exact.resize(3);
@@ -63,16 +107,13 @@ class TriangleCutter {
   /// False if the triangle is not in general position with its partners
   /// (or closed curves' nesting cannot be decided, or a face cannot be
   /// ear-clipped): the caller then declines the direct route.
-  bool cut(std::uint32_t id, std::span<const std::uint32_t> partners, CutFaces& out) {
+  bool cut(std::uint32_t id, std::span<const ChordRef> chords, CutFaces& out) {
     cross_.clear();
-    const std::array<IntPoint, 3>& c = grid_.corners[id];
-    const std::array<std::int64_t, 3> n = grid_normal(c[0], c[1], c[2]);
-    for (const std::uint32_t f : partners)
-      if (!add_chord(id, c, n, f)) return false;
+    for (const ChordRef& r : chords) add_chord(r);
     if (!merge_equal_names()) return false;
     for (const Crossing& x : cross_)
       if (x.edge >= 0 ? (x.next < 0) == (x.prev < 0) : (x.next < 0 || x.prev < 0)) return false;
-    return walk_faces(id, c, out);
+    return walk_faces(id, grid_.corners[id], out);
   }
 
  private:
@@ -85,13 +126,6 @@ class TriangleCutter {
     int next = -1, prev = -1;  ///< chords: the crossing the curve runs on to / came from (local index)
   };
 
-  std::uint32_t vertex(std::uint32_t t, int k) const {
-    return topo_.operand_base[operand_of_[t]] + topo_.by_triangle[t][static_cast<std::size_t>(k)];
-  }
-  std::uint64_t edge_key(std::uint32_t t, int k) const {
-    const std::uint64_t u = vertex(t, k), v = vertex(t, k == 2 ? 0 : k + 1);
-    return std::min(u, v) << 32 | std::max(u, v);
-  }
   /// Merges the chords' end points that have the same name (a crossing
   /// inside t ends two chords): one Crossing per name, in name order, with
   /// the chords' links. False if a crossing would get two successors or two
@@ -99,11 +133,9 @@ class TriangleCutter {
   /// search per end point: a large triangle may have thousands of partners.
   bool merge_equal_names();
 
-  /// The chord of t (id, corners c, normal n) and partner f: its two end
-  /// points, linked in the direction d = n_t x n_f (inside of f's solid on
-  /// the left, seen from t's front).
-  bool add_chord(std::uint32_t id, const std::array<IntPoint, 3>& c, const std::array<std::int64_t, 3>& n,
-                 std::uint32_t f);
+  /// A chord's two end points as crossings of t, linked in t's direction
+  /// (inside of the partner's solid on the left, seen from t's front).
+  void add_chord(const ChordRef& r);
 
   /// Whether crossing x comes before crossing y along their common edge
   /// (from its first corner): x's parameter sa / (sa - sb) is smaller.
@@ -140,7 +172,7 @@ class TriangleCutter {
   static constexpr std::uint32_t kCorners = 3;  ///< local ids: 0-2 t's corners, 3 + i crossing i
 
   const GridTriangles& grid_;
-  const InputTopology& topo_;
+  EdgeNames names_;
   const SolveContext& ctx_;
   const std::vector<std::uint32_t>& operand_of_;
   std::vector<Crossing> cross_, merged_;

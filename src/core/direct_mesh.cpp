@@ -27,19 +27,52 @@ std::optional<MeshOutput> direct_solid_mesh(const Soup& soup, const GridTriangle
     operand_of[i] = soup[i].operand;
     if (partners.touched(i)) touched.push_back(i);
   }
+  // Each meeting pair's chord once, by its smaller triangle x, at the slot
+  // of y in x's partner list (both triangles read it: computing it in each,
+  // with its orientations and crossing points, was half of the cutting).
+  std::atomic<bool> failed{false};
+  const EdgeNames names{topology, operand_of};
+  FillVector<PairChord> chords(partners.ids.size());  // the slots with x < y written below
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, touched.size(), 64), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end() && !failed.load(std::memory_order_relaxed); ++i) {
+      const std::uint32_t x = touched[i];
+      for (std::size_t s = partners.begin[x]; s < partners.begin[x + 1]; ++s)
+        if (partners.ids[s] > x && !pair_chord(grid, names, x, partners.ids[s], chords[s])) {
+          failed = true;
+          break;
+        }
+    }
+  });
+  if (failed.load() || stop.load()) return std::nullopt;
   // Touched triangles in fixed blocks, each block's output in id order: the
   // result does not depend on the schedule.
   constexpr std::size_t kBlock = 64;
   std::vector<CutFaces> blocks((touched.size() + kBlock - 1) / kBlock);
-  std::atomic<bool> failed{false};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 1), [&](const auto& range) {
     TriangleCutter cutter(grid, topology, ctx, operand_of);
+    std::vector<ChordRef> refs;
     for (std::size_t b = range.begin(); b != range.end() && !failed.load(std::memory_order_relaxed); ++b)
-      for (std::size_t i = b * kBlock; i < std::min(touched.size(), (b + 1) * kBlock); ++i)
-        if (!cutter.cut(touched[i], partners.of(touched[i]), blocks[b])) {
+      for (std::size_t i = b * kBlock; i < std::min(touched.size(), (b + 1) * kBlock); ++i) {
+        const std::uint32_t t = touched[i];
+        refs.clear();
+        for (const std::uint32_t& f : partners.of(t)) {  // a reference: its address is its slot
+          if (t < f) {  // t's own slot for f
+            refs.push_back({&chords[static_cast<std::size_t>(&f - partners.ids.data())], false});
+          } else {  // f's slot for t (lists are ascending)
+            const std::span<const std::uint32_t> of_f = partners.of(f);
+            const auto at = std::lower_bound(of_f.begin(), of_f.end(), t);
+            if (at == of_f.end() || *at != t) {  // partners are mutual: not reached
+              failed = true;
+              break;
+            }
+            refs.push_back({&chords[static_cast<std::size_t>(&*at - partners.ids.data())], true});
+          }
+        }
+        if (failed.load(std::memory_order_relaxed) || !cutter.cut(t, refs, blocks[b])) {
           failed = true;
           break;
         }
+      }
   });
   if (failed.load() || stop.load()) return std::nullopt;
   std::optional<std::vector<OutputPolygon>> untouched = solid_untouched(soup, grid, box, ctx, trees, partners, stop);
