@@ -70,7 +70,6 @@ bool pair_chord(const GridTriangles& grid, const EdgeNames& names, std::uint32_t
       if (found == 2) return false;
       ChordEnd& end = out.end[static_cast<std::size_t>(found)];
       end.name = on_x ? CrossingName{names.edge_key(x, i), y} : CrossingName{names.edge_key(y, i), x};
-      end.point = crossing_point(e[i], e[j], s[i], s[j]);
       end.sa = s[i], end.sb = s[j];
       end.edge = static_cast<std::uint8_t>(i);
       end.on_y = !on_x;
@@ -87,8 +86,10 @@ void TriangleCutter::add_chord(const ChordRef& r) {
   for (const ChordEnd& e : r.chord->end) {
     Crossing& x = cross_.emplace_back();
     x.name = e.name;
-    x.point = e.point;
-    if (e.on_y == r.reversed) x.edge = e.edge, x.sa = e.sa, x.sb = e.sb;  // on this triangle's own edge
+    x.tri = e.on_y ? r.y : r.x;
+    x.tri_edge = e.edge;
+    x.sa = e.sa, x.sb = e.sb;
+    if (e.on_y == r.reversed) x.edge = e.edge;  // on this triangle's own edge
   }
   // Seen from y, n_y x n_x reverses the chord.
   const int from = base + (r.reversed ? 1 : 0), to = base + (r.reversed ? 0 : 1);

@@ -63,10 +63,11 @@ struct EdgeNames {
 };
 
 /// An end point of the chord in which meeting triangles x and y cross: where
-/// an edge of one crosses the other's interior.
+/// an edge of one crosses the other's interior. Its point is not stored
+/// (120 bytes; the 1.2M-triangle case has ~100k pairs): each triangle that
+/// has it computes it once (crossing_point).
 struct ChordEnd {
   CrossingName name;
-  Point point;
   __int128 sa = 0, sb = 0;  ///< the sides of its edge's end points against the other's plane
   std::uint8_t edge = 0;    ///< that edge (of y if on_y, else of x)
   bool on_y = false;
@@ -85,10 +86,11 @@ struct PairChord {
 /// Each pair's chord is computed once and read by both triangles.
 bool pair_chord(const GridTriangles& grid, const EdgeNames& names, std::uint32_t x, std::uint32_t y, PairChord& out);
 
-/// A touched triangle's view of one of its chords: `reversed` when it is
-/// the pair's y (the larger id).
+/// A touched triangle's view of the chord of pair x < y: `reversed` when it
+/// is y.
 struct ChordRef {
   const PairChord* chord = nullptr;
+  std::uint32_t x = 0, y = 0;
   bool reversed = false;
 };
 
@@ -111,6 +113,10 @@ class TriangleCutter {
     cross_.clear();
     for (const ChordRef& r : chords) add_chord(r);
     if (!merge_equal_names()) return false;
+    for (Crossing& x : cross_) {  // each point once per triangle, after the merge
+      const std::array<IntPoint, 3>& e = grid_.corners[x.tri];
+      x.point = crossing_point(e[x.tri_edge], e[x.tri_edge == 2 ? 0 : x.tri_edge + 1], x.sa, x.sb);
+    }
     for (const Crossing& x : cross_)
       if (x.edge >= 0 ? (x.next < 0) == (x.prev < 0) : (x.next < 0 || x.prev < 0)) return false;
     return walk_faces(id, grid_.corners[id], out);
@@ -122,7 +128,9 @@ class TriangleCutter {
     CrossingName name;
     Point point;
     int edge = -1;     ///< the triangle's own edge it lies on, or -1 inside the triangle
-    __int128 sa = 0, sb = 0;  ///< on an edge: the sides of its end points against the crossed plane
+    std::uint32_t tri = 0;     ///< the triangle whose edge it lies on (this one or the partner)
+    std::uint8_t tri_edge = 0;  ///< that edge
+    __int128 sa = 0, sb = 0;  ///< the sides of that edge's end points against the crossed plane
     int next = -1, prev = -1;  ///< chords: the crossing the curve runs on to / came from (local index)
   };
 

@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <numeric>
+#include <optional>
 #include <tuple>
 
 namespace ember::core {
@@ -27,23 +29,47 @@ std::optional<MeshOutput> direct_solid_mesh(const Soup& soup, const GridTriangle
     operand_of[i] = soup[i].operand;
     if (partners.touched(i)) touched.push_back(i);
   }
-  // Each meeting pair's chord once, by its smaller triangle x, at the slot
-  // of y in x's partner list (both triangles read it: computing it in each,
-  // with its orientations and crossing points, was half of the cutting).
+  // Each meeting pair's chord once, by its smaller triangle x (computing it
+  // in each triangle, with its orientations and crossing points, was half of
+  // the cutting). The chords of x = touched[i] with its partners above x
+  // are chords[chord_at[i] ..], in partner order: one slot per pair.
   std::atomic<bool> failed{false};
   const EdgeNames names{topology, operand_of};
-  FillVector<PairChord> chords(partners.ids.size());  // the slots with x < y written below
+  const auto first_above = [&](std::uint32_t x) {  // where x's partners above x begin in its list
+    const std::span<const std::uint32_t> l = partners.of(x);
+    return static_cast<std::size_t>(std::upper_bound(l.begin(), l.end(), x) - l.begin());
+  };
+  std::vector<std::size_t> chord_at(touched.size() + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, touched.size(), 1024), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i)
+      chord_at[i + 1] = partners.of(touched[i]).size() - first_above(touched[i]);
+  });
+  std::inclusive_scan(chord_at.begin(), chord_at.end(), chord_at.begin());
+  FillVector<PairChord> chords(chord_at.back());  // every slot written below (or the route declines)
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, touched.size(), 64), [&](const auto& range) {
     for (std::size_t i = range.begin(); i != range.end() && !failed.load(std::memory_order_relaxed); ++i) {
       const std::uint32_t x = touched[i];
-      for (std::size_t s = partners.begin[x]; s < partners.begin[x + 1]; ++s)
-        if (partners.ids[s] > x && !pair_chord(grid, names, x, partners.ids[s], chords[s])) {
+      const std::span<const std::uint32_t> l = partners.of(x);
+      const std::size_t above = first_above(x);
+      for (std::size_t k = above; k < l.size(); ++k)
+        if (!pair_chord(grid, names, x, l[k], chords[chord_at[i] + k - above])) {
           failed = true;
           break;
         }
     }
   });
   if (failed.load() || stop.load()) return std::nullopt;
+  // The chord of t and f as t sees it.
+  const auto chord_ref = [&](std::uint32_t t, std::uint32_t f) -> std::optional<ChordRef> {
+    const std::uint32_t x = std::min(t, f), y = std::max(t, f);
+    const auto i = std::lower_bound(touched.begin(), touched.end(), x);
+    const std::span<const std::uint32_t> l = partners.of(x);
+    const auto k = std::lower_bound(l.begin(), l.end(), y);
+    if (i == touched.end() || *i != x || k == l.end() || *k != y) return std::nullopt;  // partners are mutual: not reached
+    const std::size_t slot = chord_at[static_cast<std::size_t>(i - touched.begin())] +
+                             static_cast<std::size_t>(k - l.begin()) - first_above(x);
+    return ChordRef{&chords[slot], x, y, t == y};
+  };
   // Touched triangles in fixed blocks, each block's output in id order: the
   // result does not depend on the schedule.
   constexpr std::size_t kBlock = 64;
@@ -55,18 +81,13 @@ std::optional<MeshOutput> direct_solid_mesh(const Soup& soup, const GridTriangle
       for (std::size_t i = b * kBlock; i < std::min(touched.size(), (b + 1) * kBlock); ++i) {
         const std::uint32_t t = touched[i];
         refs.clear();
-        for (const std::uint32_t& f : partners.of(t)) {  // a reference: its address is its slot
-          if (t < f) {  // t's own slot for f
-            refs.push_back({&chords[static_cast<std::size_t>(&f - partners.ids.data())], false});
-          } else {  // f's slot for t (lists are ascending)
-            const std::span<const std::uint32_t> of_f = partners.of(f);
-            const auto at = std::lower_bound(of_f.begin(), of_f.end(), t);
-            if (at == of_f.end() || *at != t) {  // partners are mutual: not reached
-              failed = true;
-              break;
-            }
-            refs.push_back({&chords[static_cast<std::size_t>(&*at - partners.ids.data())], true});
+        for (const std::uint32_t f : partners.of(t)) {
+          const std::optional<ChordRef> r = chord_ref(t, f);
+          if (!r) {
+            failed = true;
+            break;
           }
+          refs.push_back(*r);
         }
         if (failed.load(std::memory_order_relaxed) || !cutter.cut(t, refs, blocks[b])) {
           failed = true;
