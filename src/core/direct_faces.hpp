@@ -98,9 +98,8 @@ struct ChordRef {
 /// triangles appended to a CutFaces.
 class TriangleCutter {
  public:
-  TriangleCutter(const GridTriangles& grid, const InputTopology& topology, const SolveContext& ctx,
-                 const std::vector<std::uint32_t>& operand_of)
-      : grid_(grid), names_{topology, operand_of}, ctx_(ctx), operand_of_(operand_of) {
+  TriangleCutter(const GridTriangles& grid, const SolveContext& ctx, const std::vector<std::uint32_t>& operand_of)
+      : grid_(grid), ctx_(ctx), operand_of_(operand_of) {
     front_.resize(2);
     back_.resize(2);
     local_.exact.resize(3);
@@ -180,7 +179,6 @@ class TriangleCutter {
   static constexpr std::uint32_t kCorners = 3;  ///< local ids: 0-2 t's corners, 3 + i crossing i
 
   const GridTriangles& grid_;
-  EdgeNames names_;
   const SolveContext& ctx_;
   const std::vector<std::uint32_t>& operand_of_;
   std::vector<Crossing> cross_, merged_;

@@ -35,65 +35,63 @@ std::optional<MeshOutput> direct_solid_mesh(const Soup& soup, const GridTriangle
   // are chords[chord_at[i] ..], in partner order: one slot per pair.
   std::atomic<bool> failed{false};
   const EdgeNames names{topology, operand_of};
-  const auto first_above = [&](std::uint32_t x) {  // where x's partners above x begin in its list
-    const std::span<const std::uint32_t> l = partners.of(x);
-    return static_cast<std::size_t>(std::upper_bound(l.begin(), l.end(), x) - l.begin());
-  };
+  // above[i]: where touched[i]'s partners above it begin in its (ascending) list.
+  std::vector<std::uint32_t> above(touched.size());
   std::vector<std::size_t> chord_at(touched.size() + 1, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, touched.size(), 1024), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i)
-      chord_at[i + 1] = partners.of(touched[i]).size() - first_above(touched[i]);
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const std::span<const std::uint32_t> l = partners.of(touched[i]);
+      above[i] = static_cast<std::uint32_t>(std::upper_bound(l.begin(), l.end(), touched[i]) - l.begin());
+      chord_at[i + 1] = l.size() - above[i];
+    }
   });
   std::inclusive_scan(chord_at.begin(), chord_at.end(), chord_at.begin());
   FillVector<PairChord> chords(chord_at.back());  // every slot written below (or the route declines)
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, touched.size(), 64), [&](const auto& range) {
     for (std::size_t i = range.begin(); i != range.end() && !failed.load(std::memory_order_relaxed); ++i) {
-      const std::uint32_t x = touched[i];
-      const std::span<const std::uint32_t> l = partners.of(x);
-      const std::size_t above = first_above(x);
-      for (std::size_t k = above; k < l.size(); ++k)
-        if (!pair_chord(grid, names, x, l[k], chords[chord_at[i] + k - above])) {
+      const std::span<const std::uint32_t> l = partners.of(touched[i]);
+      for (std::size_t k = above[i]; k < l.size(); ++k)
+        if (!pair_chord(grid, names, touched[i], l[k], chords[chord_at[i] + k - above[i]])) {
           failed = true;
           break;
         }
     }
   });
   if (failed.load() || stop.load()) return std::nullopt;
-  // The chord of t and f as t sees it.
-  const auto chord_ref = [&](std::uint32_t t, std::uint32_t f) -> std::optional<ChordRef> {
-    const std::uint32_t x = std::min(t, f), y = std::max(t, f);
-    const auto i = std::lower_bound(touched.begin(), touched.end(), x);
-    const std::span<const std::uint32_t> l = partners.of(x);
-    const auto k = std::lower_bound(l.begin(), l.end(), y);
-    if (i == touched.end() || *i != x || k == l.end() || *k != y) return std::nullopt;  // partners are mutual: not reached
-    const std::size_t slot = chord_at[static_cast<std::size_t>(i - touched.begin())] +
-                             static_cast<std::size_t>(k - l.begin()) - first_above(x);
-    return ChordRef{&chords[slot], x, y, t == y};
+  // touched[i]'s chords as it sees them: its own slots for partners above
+  // it, the partner's slot (found by two searches) for those below.
+  const auto chord_refs = [&](std::size_t i, std::vector<ChordRef>& refs) {
+    const std::uint32_t t = touched[i];
+    const std::span<const std::uint32_t> l = partners.of(t);
+    refs.clear();
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      const std::uint32_t f = l[k];
+      if (k >= above[i]) {
+        refs.push_back({&chords[chord_at[i] + k - above[i]], t, f, false});
+        continue;
+      }
+      const auto j = std::lower_bound(touched.begin(), touched.end(), f);
+      const std::span<const std::uint32_t> lf = partners.of(f);
+      const auto at = std::lower_bound(lf.begin(), lf.end(), t);
+      if (j == touched.end() || *j != f || at == lf.end() || *at != t) return false;  // partners are mutual: not reached
+      const std::size_t jf = static_cast<std::size_t>(j - touched.begin());
+      refs.push_back({&chords[chord_at[jf] + static_cast<std::size_t>(at - lf.begin()) - above[jf]], f, t, true});
+    }
+    return true;
   };
   // Touched triangles in fixed blocks, each block's output in id order: the
   // result does not depend on the schedule.
   constexpr std::size_t kBlock = 64;
   std::vector<CutFaces> blocks((touched.size() + kBlock - 1) / kBlock);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 1), [&](const auto& range) {
-    TriangleCutter cutter(grid, topology, ctx, operand_of);
+    TriangleCutter cutter(grid, ctx, operand_of);
     std::vector<ChordRef> refs;
     for (std::size_t b = range.begin(); b != range.end() && !failed.load(std::memory_order_relaxed); ++b)
-      for (std::size_t i = b * kBlock; i < std::min(touched.size(), (b + 1) * kBlock); ++i) {
-        const std::uint32_t t = touched[i];
-        refs.clear();
-        for (const std::uint32_t f : partners.of(t)) {
-          const std::optional<ChordRef> r = chord_ref(t, f);
-          if (!r) {
-            failed = true;
-            break;
-          }
-          refs.push_back(*r);
-        }
-        if (failed.load(std::memory_order_relaxed) || !cutter.cut(t, refs, blocks[b])) {
+      for (std::size_t i = b * kBlock; i < std::min(touched.size(), (b + 1) * kBlock); ++i)
+        if (!chord_refs(i, refs) || !cutter.cut(touched[i], refs, blocks[b])) {
           failed = true;
           break;
         }
-      }
   });
   if (failed.load() || stop.load()) return std::nullopt;
   std::optional<std::vector<OutputPolygon>> untouched = solid_untouched(soup, grid, box, ctx, trees, partners, stop);

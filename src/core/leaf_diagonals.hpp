@@ -81,7 +81,8 @@ class LeafDiagonals {
     for (std::size_t d = 0; d < 4; ++d) {
       const __m256i lo = _mm256_set1_epi32(static_cast<std::int32_t>(e.lo[d]));
       const __m256i hi = _mm256_set1_epi32(static_cast<std::int32_t>(e.hi[d]));
-      apart = _mm256_or_si256(apart, _mm256_or_si256(_mm256_cmpgt_epi32(lanes8(b.lo[d]), hi), _mm256_cmpgt_epi32(lo, lanes8(b.hi[d]))));
+      apart = _mm256_or_si256(
+          apart, _mm256_or_si256(_mm256_cmpgt_epi32(lanes8(b.lo[d]), hi), _mm256_cmpgt_epi32(lo, lanes8(b.hi[d]))));
     }
     return mask8(apart);
   }
