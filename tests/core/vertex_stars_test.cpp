@@ -92,6 +92,27 @@ TEST(VertexStars, AFanWindingTwiceIsNotCertifiedAndItsOverlapIsFound) {
   EXPECT_EQ(certified(with_ids(fan5_72))[0].embedded & 1, 1);
 }
 
+TEST(VertexStars, TheCertificateHoldsAtTheGridsFullRange) {
+  // The bit budget (d . n, d . (e_0 x e) in __int128, e_0 x e in int64)
+  // at coordinates up to the grid's limit: closed meshes spanning +-(2^25 -
+  // 1) are certified everywhere, and fans around a far corner, scaled to
+  // spokes of ~2^24 (coordinates up to ~2^25), keep their verdicts.
+  constexpr double kScale = static_cast<double>(kCoordLimit - 1);
+  for (const Mesh& m : {icosphere({0, 0, 0}, 1.0, 3), tessellated_box({-1, -1, -1}, {1, 1, 1}, 3)}) {
+    const std::vector<Tri> corners = on_grid(m, kScale);
+    EXPECT_EQ(certified_corners(certified(with_ids(corners))), 3 * corners.size());
+  }
+  const auto far_fan = [](int spokes, double turn) {
+    std::vector<Tri> tris = fan(spokes, turn);
+    for (Tri& t : tris)
+      for (IntPoint& p : t) p = IntPoint{p.x * 10000 - kCoordLimit / 2, p.y * 10000 + kCoordLimit / 2, p.z};
+    return tris;
+  };
+  const std::vector<Tri> twice = far_fan(6, 120), once = far_fan(6, 60);
+  EXPECT_EQ(certified(with_ids(twice))[0].embedded & 1, 0);
+  EXPECT_EQ(certified(with_ids(once))[0].embedded & 1, 1);
+}
+
 TEST(VertexStars, FoldedAndNonManifoldStarsAreNotCertified) {
   // A fan winding once, but with spoke w_3 moved back to 100 degrees, before
   // w_2 (120): triangle (v, w_2, w_3) turns clockwise and folds over its
