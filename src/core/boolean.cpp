@@ -291,8 +291,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
         std::atomic<bool> disproved{false};
         const auto prove = [&] {
           tbb::parallel_for(std::size_t{0}, unproven.size(), [&](std::size_t k) {
-            findings[k] =
-                core::check_solid(root, grid, unproven[k], trees ? &trees->tree[unproven[k]] : nullptr, &disproved);
+            const std::uint32_t o = unproven[k];
+            findings[k] = trees ? core::check_solid(root, grid, o, &trees->tree[o], &disproved, &trees->diagonals[o])
+                                : core::check_solid(root, grid, o, nullptr, &disproved);
             if (findings[k].verdict != core::SolidVerdict::Solid) disproved = true;
           });
           proved = std::chrono::steady_clock::now();

@@ -25,8 +25,8 @@ namespace {
 class Search {
  public:
   Search(std::span<const ContactTriangle> tris, std::size_t max_pairs, const TriangleTree* tree,
-         std::atomic<bool>* found_one)
-      : tris_(tris), max_pairs_(max_pairs), found_one_(found_one) {
+         std::atomic<bool>* found_one, const LeafDiagonals* diagonals)
+      : tris_(tris), diagonals_(diagonals), max_pairs_(max_pairs), found_one_(found_one) {
     const std::size_t n = tris.size();
     budget_ = kBudgetPerTriangle * n + (std::size_t{1} << 16);
     counting_budget_ = kCountingPerTriangle * n + (std::size_t{1} << 16);
@@ -40,7 +40,7 @@ class Search {
     }
     tree_ptr_ = tree;
     ids_.emplace(*tree, tris);
-    diagonals_.emplace(*tree, tris);
+    if (!diagonals_) diagonals_ = &own_diagonals_.emplace(*tree, tris);
   }
 
   ContactSearchResult run() {
@@ -194,7 +194,8 @@ class Search {
   std::span<const ContactTriangle> tris_;
   TriangleTree own_tree_;  ///< when the caller gave none
   std::optional<LeafVertexIds> ids_;
-  std::optional<LeafDiagonals> diagonals_;
+  std::optional<LeafDiagonals> own_diagonals_;  ///< when the caller gave none
+  const LeafDiagonals* diagonals_;
   const TriangleTree* tree_ptr_ = nullptr;
   std::size_t max_pairs_;
   std::size_t budget_ = 0;
@@ -209,9 +210,10 @@ class Search {
 }  // namespace
 
 ContactSearchResult find_contacts(std::span<const ContactTriangle> tris, std::size_t max_pairs,
-                                  const TriangleTree* tree, std::atomic<bool>* found_one) {
+                                  const TriangleTree* tree, std::atomic<bool>* found_one,
+                                  const LeafDiagonals* diagonals) {
   if (tris.size() < 2 || max_pairs == 0) return {};
-  return Search(tris, max_pairs, tree, found_one).run();
+  return Search(tris, max_pairs, tree, found_one, tree ? diagonals : nullptr).run();
 }
 
 }  // namespace ember::core

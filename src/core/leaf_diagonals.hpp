@@ -1,10 +1,11 @@
 #pragma once
 // The diagonal extents (solid_check.hpp's DiagonalExtent) of the triangles
 // in each leaf of a TriangleTree, stored like the leaf's boxes (coordinate by
-// coordinate), so that the solid proof's leaf pairs dismiss the slots that
-// are diagonally apart from a triangle eight at a time (contact_search.cpp)
-// instead of computing and comparing the extents pair by pair (EMBER case 84:
-// 16M pairs, a third of its proof).
+// coordinate), so that the broad phases' leaf pairs dismiss the slots that
+// are diagonally apart from a triangle eight at a time instead of computing
+// and comparing the extents pair by pair: the solid proof's contact search
+// (contact_search.cpp; EMBER case 84: 16M pairs, a third of its proof) and
+// the solid path's partner search (solid_path.cpp).
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -25,18 +26,16 @@ static_assert(3 * kCoordLimit < std::numeric_limits<std::int32_t>::max(), "diago
 
 class LeafDiagonals {
  public:
+  /// Over a tree of contact triangles (item i: tris[i]).
   LeafDiagonals(const TriangleTree& tree, std::span<const ContactTriangle> tris) : first_leaf_(tree.first_leaf()) {
-    tree.fill_leaf_blocks(block_, [&](Block& b, std::size_t s, std::uint32_t item) {
-      // Empty slots: an extent apart from everything (never a candidate anyway).
-      DiagonalExtent e{};
-      e.lo.fill(std::numeric_limits<std::int32_t>::max());
-      e.hi.fill(std::numeric_limits<std::int32_t>::min());
-      if (item != TriangleTree::kNoItem) e = diagonal_extent(tris[item].p());
-      for (std::size_t d = 0; d < 4; ++d) {
-        b.lo[d][s] = static_cast<std::int32_t>(e.lo[d]);
-        b.hi[d][s] = static_cast<std::int32_t>(e.hi[d]);
-      }
-    });
+    fill(tree, [&](std::uint32_t item) -> const std::array<IntPoint, 3>& { return tris[item].p(); });
+  }
+  /// Over a tree of grid triangles (item i: corners[i]): an operand's, built
+  /// once with its tree for the proof and the solid path's partner search
+  /// (OperandTrees).
+  LeafDiagonals(const TriangleTree& tree, std::span<const std::array<IntPoint, 3>> corners)
+      : first_leaf_(tree.first_leaf()) {
+    fill(tree, [&](std::uint32_t item) -> const std::array<IntPoint, 3>& { return corners[item]; });
   }
 
   /// The extent of the triangle in tree slot `slot` (diagonal_extent).
@@ -110,6 +109,21 @@ class LeafDiagonals {
   }
 
  private:
+  template <typename CornersOf>
+  void fill(const TriangleTree& tree, CornersOf&& corners_of) {
+    tree.fill_leaf_blocks(block_, [&](Block& b, std::size_t s, std::uint32_t item) {
+      // Empty slots: an extent apart from everything (never a candidate anyway).
+      DiagonalExtent e{};
+      e.lo.fill(std::numeric_limits<std::int32_t>::max());
+      e.hi.fill(std::numeric_limits<std::int32_t>::min());
+      if (item != TriangleTree::kNoItem) e = diagonal_extent(corners_of(item));
+      for (std::size_t d = 0; d < 4; ++d) {
+        b.lo[d][s] = static_cast<std::int32_t>(e.lo[d]);
+        b.hi[d][s] = static_cast<std::int32_t>(e.hi[d]);
+      }
+    });
+  }
+
   struct alignas(16) Block {
     std::int32_t lo[4][TriangleTree::kLeaf], hi[4][TriangleTree::kLeaf];
   };

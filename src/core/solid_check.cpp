@@ -136,7 +136,7 @@ std::vector<std::uint32_t> operand_members(const Soup& soup, std::uint32_t opera
 }  // namespace
 
 SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand,
-                         const TriangleTree* tree, std::atomic<bool>* intersecting) {
+                         const TriangleTree* tree, std::atomic<bool>* intersecting, const LeafDiagonals* diagonals) {
   const std::vector<std::uint32_t> members = operand_members(root.soup, operand);
   if (members.empty()) return {};
   // Counting the contacts (not just finding one) costs at most one full
@@ -158,8 +158,9 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
                                                                                       members.size())
                                      : std::span<const std::array<std::uint32_t, 3>>(),
                          members.front());
-  if (tree && tree->size() != tris.size()) tree = nullptr;  // not this operand's: build one
-  const ContactSearchResult contacts = find_contacts(tris, OperandReport::kMaxReportedPairs, tree, intersecting);
+  if (tree && tree->size() != tris.size()) tree = nullptr;  // not this operand's: build one (and its diagonals)
+  const ContactSearchResult contacts =
+      find_contacts(tris, OperandReport::kMaxReportedPairs, tree, intersecting, tree ? diagonals : nullptr);
   tris = {};
   if (contacts.pairs > 0) return {SolidVerdict::SelfIntersecting, contacts.pairs, 0, contacts.complete};
   if (contacts.gave_up) return {SolidVerdict::TooComplex, 0, 0};

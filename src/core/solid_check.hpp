@@ -27,6 +27,8 @@
 
 namespace ember::core {
 
+class LeafDiagonals;
+
 enum class SolidVerdict {
   Solid,
   SelfIntersecting,   ///< two triangles meet beyond a shared vertex or edge (or touch)
@@ -68,13 +70,15 @@ struct SolidFinding {
 /// Decides whether `operand` is solid. `root` is the whole problem (its soup
 /// holds every operand's polygons, polygon i has id i; its reference point is
 /// outside everything).
-/// `tree`, if given, is the operand's triangle tree (build_operand_trees).
+/// `tree`, if given, is the operand's triangle tree and `diagonals` its
+/// leaves' extents (build_operand_trees).
 /// `intersecting`, if given, is set as soon as the search meets the first
 /// self-intersection, before the count is complete: the defaults' solid
 /// path, started alongside the proof on the premise that every operand is
 /// solid, stops on it (solve_solid's `abandon`) and frees its threads.
 SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand,
-                         const TriangleTree* tree = nullptr, std::atomic<bool>* intersecting = nullptr);
+                         const TriangleTree* tree = nullptr, std::atomic<bool>* intersecting = nullptr,
+                         const LeafDiagonals* diagonals = nullptr);
 
 /// A grid triangle prepared for the contact test: where its corners are,
 /// their welded ids (equal iff equal positions, within the triangles

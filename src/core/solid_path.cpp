@@ -18,7 +18,7 @@
 #include "core/solid_cuts.hpp"
 #include "core/solid_handover.hpp"
 #include "core/solid_trace.hpp"
-#include "core/triangle_tree.hpp"
+#include "core/operand_trees.hpp"
 
 namespace ember::core {
 
@@ -41,21 +41,34 @@ constexpr bool more_than_two_bits(unsigned m) {
 static_assert(!more_than_two_bits(0b101) && more_than_two_bits(0b10101) && !more_than_two_bits(0) &&
               more_than_two_bits(~0u));
 
-/// The meeting pairs of leaf x of X (at x_base) and leaf y of Y: each of x's
-/// triangles whose box meets y's against y's triangles, by x's plane first
-/// (apart_triangles_meet). Reported as (x's id, y's id), or swapped.
+/// One operand's side of the partner search: its tree, its leaves'
+/// diagonal extents, and the id of its item 0.
+struct Side {
+  const TriangleTree& tree;
+  const LeafDiagonals& diagonals;
+  std::uint32_t base;
+};
+
+/// The meeting pairs of leaf x of X and leaf y of Y: each of x's triangles
+/// whose box meets y's against y's triangles whose boxes and diagonal
+/// extents meet its own, by x's plane first (apart_triangles_meet). Reported
+/// as (x's id, y's id), or swapped.
 /// Inlined: it runs once per leaf pair, most of which test few pairs (as a
 /// call it cost the bunny pair's union 0.4% more instructions).
 template <bool swap, bool Wide>
-[[gnu::always_inline]] inline void leaf_meeting_pairs(const GridTriangles& grid, const TriangleTree& X,
-                                                      std::uint32_t x_base, std::size_t x, const TriangleTree& Y,
-                                                      std::uint32_t y_base, std::size_t y, PairSink& sink) {
+[[gnu::always_inline]] inline void leaf_meeting_pairs(const GridTriangles& grid, const Side& xs, std::size_t x,
+                                                      const Side& ys, std::size_t y, PairSink& sink) {
+  const TriangleTree &X = xs.tree, &Y = ys.tree;
+  const std::uint32_t x_base = xs.base, y_base = ys.base;
   const std::size_t xb = X.leaf_slots(x).first, yb = Y.leaf_slots(y).first;
   const Box32 y_box = Y.node(y);
   // x's triangles whose boxes meet y's node box, eight at a time.
   for (unsigned near = X.overlap_mask_in<Wide>(x, y_box); near != 0; near &= near - 1) {
     const std::size_t i = xb + static_cast<std::size_t>(std::countr_zero(near));
     unsigned m = Y.overlap_mask_in<Wide>(y, X.box(i));
+    // Boxes that meet, diagonal extents that do not (the bunny pair: a third
+    // of the pairs the boxes leave), eight at a time.
+    if (m != 0) m &= ~ys.diagonals.apart_mask_in<Wide>(y, xs.diagonals.extent(i));
     if (m == 0) continue;
     const std::uint32_t ix = x_base + X.item(i);
     const std::array<IntPoint, 3>& tx = grid.corners[ix];
@@ -82,21 +95,19 @@ template <bool swap, bool Wide>
 /// leaf pair, by the leaves' boxes. The answer is exact either way, and the
 /// pairs are sorted after. Wide: the 8-lane leaf tests (wide_lanes.hpp).
 template <bool Wide>
-[[gnu::always_inline]] inline void leaf_pair(const GridTriangles& grid, const TriangleTree& A, std::uint32_t a_base,
-                                             std::size_t a, const TriangleTree& B, std::uint32_t b_base, std::size_t b,
-                                             PairSink& sink) {
-  if (extent(B.node(b)) > 2 * extent(A.node(a))) {
-    leaf_meeting_pairs<true, Wide>(grid, B, b_base, b, A, a_base, a, sink);
+[[gnu::always_inline]] inline void leaf_pair(const GridTriangles& grid, const Side& as, std::size_t a, const Side& bs,
+                                             std::size_t b, PairSink& sink) {
+  if (extent(bs.tree.node(b)) > 2 * extent(as.tree.node(a))) {
+    leaf_meeting_pairs<true, Wide>(grid, bs, b, as, a, sink);
   } else {
-    leaf_meeting_pairs<false, Wide>(grid, A, a_base, a, B, b_base, b, sink);
+    leaf_meeting_pairs<false, Wide>(grid, as, a, bs, b, sink);
   }
 }
 
 #if EMBER_WIDE_LANES
-EMBER_TARGET_AVX2 void leaf_pair_wide(const GridTriangles& grid, const TriangleTree& A, std::uint32_t a_base,
-                                      std::size_t a, const TriangleTree& B, std::uint32_t b_base, std::size_t b,
-                                      PairSink& sink) {
-  leaf_pair<true>(grid, A, a_base, a, B, b_base, b, sink);
+EMBER_TARGET_AVX2 void leaf_pair_wide(const GridTriangles& grid, const Side& as, std::size_t a, const Side& bs,
+                                      std::size_t b, PairSink& sink) {
+  leaf_pair<true>(grid, as, a, bs, b, sink);
 }
 #endif
 
@@ -105,16 +116,16 @@ EMBER_TARGET_AVX2 void leaf_pair_wide(const GridTriangles& grid, const TriangleT
 /// whose boxes overlap (the caller tests them: most child pairs do not
 /// overlap, and the test costs less than a call). Stops early once `stop` is
 /// set (the run is abandoned: the pairs are not used). wide: cpu_has_avx2().
-void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32_t a_base, std::size_t a, int da,
-                   const TriangleTree& B, std::uint32_t b_base, std::size_t b, int db, PairSink& sink,
-                   const std::atomic<bool>& stop, bool wide) {
+void meeting_pairs(const GridTriangles& grid, const Side& as, std::size_t a, int da, const Side& bs, std::size_t b,
+                   int db, PairSink& sink, const std::atomic<bool>& stop, bool wide) {
+  const TriangleTree &A = as.tree, &B = bs.tree;
   const bool a_leaf = da == A.depth(), b_leaf = db == B.depth();
   if (a_leaf && b_leaf) {
     if (A.leaf_slots(a).first >= A.size() || B.leaf_slots(b).first >= B.size()) return;  // empty leaves
 #if EMBER_WIDE_LANES
-    if (wide) return leaf_pair_wide(grid, A, a_base, a, B, b_base, b, sink);
+    if (wide) return leaf_pair_wide(grid, as, a, bs, b, sink);
 #endif
-    leaf_pair<false>(grid, A, a_base, a, B, b_base, b, sink);
+    leaf_pair<false>(grid, as, a, bs, b, sink);
     return;
   }
   // Descend the side with more levels below (node sizes stay alike); large
@@ -124,10 +135,10 @@ void meeting_pairs(const GridTriangles& grid, const TriangleTree& A, std::uint32
   const auto child = [&](int c) {
     if (split_a) {
       const std::size_t ac = 2 * a + 1 + static_cast<std::size_t>(c);
-      if (overlap(A.node(ac), B.node(b))) meeting_pairs(grid, A, a_base, ac, da + 1, B, b_base, b, db, sink, stop, wide);
+      if (overlap(A.node(ac), B.node(b))) meeting_pairs(grid, as, ac, da + 1, bs, b, db, sink, stop, wide);
     } else {
       const std::size_t bc = 2 * b + 1 + static_cast<std::size_t>(c);
-      if (overlap(A.node(a), B.node(bc))) meeting_pairs(grid, A, a_base, a, da, B, b_base, bc, db + 1, sink, stop, wide);
+      if (overlap(A.node(a), B.node(bc))) meeting_pairs(grid, as, a, da, bs, bc, db + 1, sink, stop, wide);
     }
   };
   if ((split_a ? A.depth() - da : B.depth() - db) >= kParallelLevels) {
@@ -151,9 +162,9 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
   const std::size_t operands = trees.tree.size();
   for (std::size_t a = 0; a < operands; ++a)
     for (std::size_t b = a + 1; b < operands; ++b) {
-      const TriangleTree &A = trees.tree[a], &B = trees.tree[b];
-      if (!A.empty() && !B.empty() && overlap(A.node(0), B.node(0)))
-        meeting_pairs(grid, A, trees.begin[a], 0, 0, B, trees.begin[b], 0, 0, sink, stop, wide);
+      const Side as{trees.tree[a], trees.diagonals[a], trees.begin[a]}, bs{trees.tree[b], trees.diagonals[b], trees.begin[b]};
+      if (!as.tree.empty() && !bs.tree.empty() && overlap(as.tree.node(0), bs.tree.node(0)))
+        meeting_pairs(grid, as, 0, 0, bs, 0, 0, sink, stop, wide);
     }
   // Counting sort by triangle, then each list ascending (lists are short,
   // and the result does not depend on the order pairs were found in).

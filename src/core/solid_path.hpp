@@ -39,9 +39,9 @@
 #include <span>
 #include <vector>
 
+#include "core/operand_trees.hpp"
 #include "core/solid_check.hpp"
 #include "core/solve.hpp"
-#include "core/triangle_tree.hpp"
 
 namespace ember::core {
 

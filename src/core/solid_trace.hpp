@@ -12,8 +12,8 @@
 // than the one straight segment from outside.)
 #include <vector>
 
+#include "core/operand_trees.hpp"
 #include "core/solve.hpp"
-#include "core/triangle_tree.hpp"
 
 namespace ember::core {
 

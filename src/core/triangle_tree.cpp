@@ -119,16 +119,4 @@ TriangleTree::TriangleTree(std::span<const Box32> boxes) {
   }
 }
 
-OperandTrees build_operand_trees(std::vector<std::uint32_t> begin, std::span<const std::array<IntPoint, 3>> corners) {
-  OperandTrees t;
-  t.begin = std::move(begin);
-  t.tree.resize(t.begin.size() - 1);
-  tbb::parallel_for(std::size_t{0}, t.tree.size(), [&](std::size_t o) {
-    std::vector<Box32> boxes(t.begin[o + 1] - t.begin[o]);
-    for (std::size_t i = 0; i < boxes.size(); ++i) boxes[i] = box_of(corners[t.begin[o] + i]);
-    t.tree[o] = TriangleTree(boxes);
-  });
-  return t;
-}
-
 }  // namespace ember::core

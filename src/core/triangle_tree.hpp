@@ -5,7 +5,7 @@
 // exactly one leaf, so a traversal meets every pair of overlapping boxes
 // exactly once. Used by the solid proof's self-contact search
 // (contact_search.hpp) and by the solid path's broad phase and traces
-// (solid_path.hpp).
+// (solid_path.hpp) through OperandTrees (operand_trees.hpp).
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -212,17 +212,5 @@ inline unsigned TriangleTree::overlap_mask_portable(std::size_t leaf_node, const
   }
   return mask & valid_slots(leaf_node);
 }
-
-/// Per operand: its triangles' ids [begin[o], begin[o + 1]) and their tree
-/// (item i is id begin[o] + i). The solid proof searches each operand's tree
-/// against itself, the solid path pairs of them.
-struct OperandTrees {
-  std::vector<std::uint32_t> begin;
-  std::vector<TriangleTree> tree;
-};
-
-/// The trees of every operand's triangles: operand o's are triangles
-/// [begin[o], begin[o + 1]) with corners `corners`. Parallel (oneTBB).
-OperandTrees build_operand_trees(std::vector<std::uint32_t> begin, std::span<const std::array<IntPoint, 3>> corners);
 
 }  // namespace ember::core

@@ -31,10 +31,13 @@ TEST(LeafDiagonals, MasksMatchDiagonallyApartPairByPair) {
       }
       const core::TriangleTree tree(boxes);
       const core::LeafDiagonals diagonals(tree, tris);
+      const core::LeafDiagonals from_corners(tree, std::span<const std::array<IntPoint, 3>>(corners));
       for (std::size_t s = 0; s < n; ++s) {
         const core::DiagonalExtent want = core::diagonal_extent(tris[tree.item(s)].p());
         ASSERT_EQ(diagonals.extent(s).lo, want.lo);
         ASSERT_EQ(diagonals.extent(s).hi, want.hi);
+        ASSERT_EQ(from_corners.extent(s).lo, want.lo);  // the operand trees' (OperandTrees::diagonals)
+        ASSERT_EQ(from_corners.extent(s).hi, want.hi);
       }
       for (std::size_t q = 0; q < n; ++q) {
         const core::DiagonalExtent e = core::diagonal_extent(tris[q].p());

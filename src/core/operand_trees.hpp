@@ -1,0 +1,27 @@
+#pragma once
+// Per operand, its triangles' tree (triangle_tree.hpp) and the diagonal
+// extents of its leaves (leaf_diagonals.hpp): built once, read by the solid
+// proof's contact search (each operand against itself), the solid path's
+// partner search (pairs of operands) and its traces.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/leaf_diagonals.hpp"
+#include "core/triangle_tree.hpp"
+
+namespace ember::core {
+
+/// Operand o's triangles are ids [begin[o], begin[o + 1]); tree[o] holds
+/// them (item i is id begin[o] + i) and diagonals[o] their leaves' extents.
+struct OperandTrees {
+  std::vector<std::uint32_t> begin;
+  std::vector<TriangleTree> tree;
+  std::vector<LeafDiagonals> diagonals;
+};
+
+/// The trees of every operand's triangles: operand o's are triangles
+/// [begin[o], begin[o + 1]) with corners `corners`. Parallel (oneTBB).
+OperandTrees build_operand_trees(std::vector<std::uint32_t> begin, std::span<const std::array<IntPoint, 3>> corners);
+
+}  // namespace ember::core

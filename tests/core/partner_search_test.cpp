@@ -1,0 +1,96 @@
+// The solid path's partner search (src/core/solid_path.hpp, find_partners):
+// through the operands' trees, boxes, diagonal extents (operand_trees.hpp)
+// and the box-beside-plane filter, it must report exactly the pairs of
+// triangles of different operands that meet (triangles_meet, closed sets),
+// each in both lists, sorted: compared here with every pair tested, on
+// crowded small-range soups (touching, coplanar and vertex-sharing pairs
+// abound), sparse ones at the grid's full range, and three operands.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <random>
+#include <span>
+#include <vector>
+
+#include "core/operand_trees.hpp"
+#include "core/solid_path.hpp"
+
+namespace ember::test {
+namespace {
+
+/// `count` random non-degenerate triangles with corners in [-range, range]^3
+/// and sides up to `size`.
+std::vector<std::array<IntPoint, 3>> random_triangles(std::mt19937& rng, std::size_t count, std::int64_t range,
+                                                      std::int64_t size) {
+  std::uniform_int_distribution<std::int64_t> at(-range, range), step(-size, size);
+  const auto clamp = [&](std::int64_t v) { return std::clamp(v, -range, range); };
+  std::vector<std::array<IntPoint, 3>> out;
+  while (out.size() < count) {
+    const IntPoint p{at(rng), at(rng), at(rng)};
+    std::array<IntPoint, 3> t{p, p, p};
+    for (int k = 1; k < 3; ++k) t[k] = {clamp(p.x + step(rng)), clamp(p.y + step(rng)), clamp(p.z + step(rng))};
+    if (grid_normal(t[0], t[1], t[2]) != std::array<std::int64_t, 3>{0, 0, 0}) out.push_back(t);
+  }
+  return out;
+}
+
+/// find_partners on operands of the given sizes (ids in operand order)
+/// against every cross-operand pair tested exactly.
+void expect_exact_partners(const std::vector<std::vector<std::array<IntPoint, 3>>>& operands, std::size_t& meeting) {
+  core::GridTriangles grid;
+  std::vector<std::uint32_t> begin{0}, operand_of;
+  for (std::size_t o = 0; o < operands.size(); ++o) {
+    for (const auto& t : operands[o]) {
+      grid.corners.push_back(t);
+      operand_of.push_back(static_cast<std::uint32_t>(o));
+    }
+    begin.push_back(static_cast<std::uint32_t>(grid.corners.size()));
+  }
+  const std::size_t n = grid.corners.size();
+  const core::OperandTrees trees = core::build_operand_trees(begin, grid.corners);
+  const std::atomic<bool> never{false};
+  const core::Partners found = core::find_partners(grid, trees, n, never);
+  ASSERT_EQ(found.begin.size(), n + 1);
+  for (std::uint32_t x = 0; x < n; ++x) {
+    std::vector<std::uint32_t> want;
+    for (std::uint32_t y = 0; y < n; ++y)
+      if (operand_of[x] != operand_of[y] && core::triangles_meet(grid.corners[x], grid.corners[y])) want.push_back(y);
+    const std::span<const std::uint32_t> got = found.of(x);
+    ASSERT_EQ(std::vector<std::uint32_t>(got.begin(), got.end()), want) << "triangle " << x;
+    meeting += want.size();
+  }
+}
+
+TEST(PartnerSearch, FindsExactlyTheMeetingPairsOfCrowdedSoups) {
+  std::mt19937 rng(71);
+  std::size_t meeting = 0;
+  for (const std::int64_t range : {std::int64_t{4}, std::int64_t{40}, std::int64_t{1000}})
+    for (const std::size_t n : {std::size_t{1}, std::size_t{9}, std::size_t{200}})
+      expect_exact_partners({random_triangles(rng, n, range, range / 2 + 1), random_triangles(rng, 150, range, range / 3 + 1)},
+                            meeting);
+  EXPECT_GT(meeting, 1000u) << meeting;  // the soups do meet, touching included
+}
+
+TEST(PartnerSearch, FindsExactlyTheMeetingPairsAtTheGridsFullRange) {
+  std::mt19937 rng(72);
+  std::size_t meeting = 0;
+  // Long triangles across the whole grid, and small ones among them.
+  for (int round = 0; round < 3; ++round)
+    expect_exact_partners({random_triangles(rng, 300, kCoordLimit, kCoordLimit),
+                           random_triangles(rng, 300, kCoordLimit, kCoordLimit / 16)},
+                          meeting);
+  EXPECT_GT(meeting, 50u) << meeting;
+}
+
+TEST(PartnerSearch, ThreeOperandsPairEveryTwo) {
+  std::mt19937 rng(73);
+  std::size_t meeting = 0;
+  expect_exact_partners({random_triangles(rng, 100, 20, 10), random_triangles(rng, 60, 20, 10),
+                         random_triangles(rng, 80, 20, 10)},
+                        meeting);
+  EXPECT_GT(meeting, 200u) << meeting;
+}
+
+}  // namespace
+}  // namespace ember::test
