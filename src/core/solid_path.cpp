@@ -10,8 +10,10 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
+#include <cassert>
 #include <numeric>
 
 #include "core/pieces.hpp"
@@ -104,53 +106,83 @@ template <bool Wide>
   }
 }
 
+/// A pair of subtrees still to visit: node a of A at depth da, node b of B
+/// at depth db, their boxes overlapping.
+struct NodePair {
+  std::size_t a, b;
+  int da, db;
+};
+
+/// Which side of a node pair to descend: the one with more levels below
+/// (node sizes stay alike); none when both are leaves.
+bool descend_a(const TriangleTree& A, const TriangleTree& B, const NodePair& v) {
+  return v.da != A.depth() && (v.db == B.depth() || A.depth() - v.da >= B.depth() - v.db);
+}
+
+/// Every meeting pair under node pair `root`, depth first with a stack of
+/// its own: as a recursion each node pair cost ~150 instructions of calls
+/// and spills (the bunny pair visits 145k of them for its 55k leaf pairs).
+/// A descent adds at most one pending pair per level of either tree, and
+/// a tree holds fewer than 2^32 triangles, 8 per leaf (< 30 levels).
+template <bool Wide>
+[[gnu::always_inline]] inline void subtree_pairs(const GridTriangles& grid, const Side& as, const Side& bs,
+                                                 const NodePair& root, PairSink& sink) {
+  const TriangleTree &A = as.tree, &B = bs.tree;
+  assert(A.depth() + B.depth() < 126);
+  std::array<NodePair, 128> stack;
+  std::size_t top = 0;
+  stack[top++] = root;
+  while (top > 0) {
+    const NodePair v = stack[--top];
+    if (v.da == A.depth() && v.db == B.depth()) {
+      if (A.leaf_slots(v.a).first < A.size() && B.leaf_slots(v.b).first < B.size())  // else an empty leaf
+        leaf_pair<Wide>(grid, as, v.a, bs, v.b, sink);
+      continue;
+    }
+    // Child 1 pushed first: child 0 is visited first, as the recursion did.
+    if (descend_a(A, B, v)) {
+      for (std::size_t c = 2 * v.a + 2; c > 2 * v.a; --c)
+        if (overlap(A.node(c), B.node(v.b))) stack[top++] = {c, v.b, v.da + 1, v.db};
+    } else {
+      for (std::size_t c = 2 * v.b + 2; c > 2 * v.b; --c)
+        if (overlap(A.node(v.a), B.node(c))) stack[top++] = {v.a, c, v.da, v.db + 1};
+    }
+  }
+}
+
 #if EMBER_WIDE_LANES
-EMBER_TARGET_AVX2 void leaf_pair_wide(const GridTriangles& grid, const Side& as, std::size_t a, const Side& bs,
-                                      std::size_t b, PairSink& sink) {
-  leaf_pair<true>(grid, as, a, bs, b, sink);
+EMBER_TARGET_AVX2 void subtree_pairs_wide(const GridTriangles& grid, const Side& as, const Side& bs,
+                                          const NodePair& root, PairSink& sink) {
+  subtree_pairs<true>(grid, as, bs, root, sink);
 }
 #endif
 
 /// Collects every pair of A x B that meets (boxes first, then exactly:
-/// triangles_meet), in subtrees a of A at depth da and b of B at depth db,
-/// whose boxes overlap (the caller tests them: most child pairs do not
-/// overlap, and the test costs less than a call). Stops early once `stop` is
-/// set (the run is abandoned: the pairs are not used). wide: cpu_has_avx2().
-void meeting_pairs(const GridTriangles& grid, const Side& as, std::size_t a, int da, const Side& bs, std::size_t b,
-                   int db, PairSink& sink, const std::atomic<bool>& stop, bool wide) {
+/// triangles_meet) under node pair v, whose boxes overlap (the caller tests
+/// them: most child pairs do not overlap, and the test costs less than a
+/// call). Large subtrees as parallel tasks, the rest by subtree_pairs. Stops
+/// early once `stop` is set (the run is abandoned: the pairs are not used).
+/// wide: cpu_has_avx2().
+void meeting_pairs(const GridTriangles& grid, const Side& as, const Side& bs, const NodePair& v, PairSink& sink,
+                   const std::atomic<bool>& stop, bool wide) {
   const TriangleTree &A = as.tree, &B = bs.tree;
-  const bool a_leaf = da == A.depth(), b_leaf = db == B.depth();
-  if (a_leaf && b_leaf) {
-    if (A.leaf_slots(a).first >= A.size() || B.leaf_slots(b).first >= B.size()) return;  // empty leaves
-#if EMBER_WIDE_LANES
-    if (wide) return leaf_pair_wide(grid, as, a, bs, b, sink);
-#endif
-    leaf_pair<false>(grid, as, a, bs, b, sink);
-    return;
-  }
-  // Descend the side with more levels below (node sizes stay alike); large
-  // subtrees as parallel tasks.
   constexpr int kParallelLevels = 6;
-  const bool split_a = !a_leaf && (b_leaf || A.depth() - da >= B.depth() - db);
-  const auto child = [&](int c) {
-    if (split_a) {
-      const std::size_t ac = 2 * a + 1 + static_cast<std::size_t>(c);
-      if (overlap(A.node(ac), B.node(b))) meeting_pairs(grid, as, ac, da + 1, bs, b, db, sink, stop, wide);
-    } else {
-      const std::size_t bc = 2 * b + 1 + static_cast<std::size_t>(c);
-      if (overlap(A.node(a), B.node(bc))) meeting_pairs(grid, as, a, da, bs, bc, db + 1, sink, stop, wide);
-    }
-  };
-  if ((split_a ? A.depth() - da : B.depth() - db) >= kParallelLevels) {
-    // Only here, above the small subtrees: one relaxed load per task. (A
-    // proof that finds a self-intersection sets it; the sliver pile's
-    // speculative run otherwise searched its twin rods' ~all-pairs to the end.)
-    if (stop.load(std::memory_order_relaxed)) return;
-    tbb::parallel_invoke([&] { child(0); }, [&] { child(1); });
-  } else {
-    child(0);
-    child(1);
+  const bool split_a = descend_a(A, B, v);
+  if ((split_a ? A.depth() - v.da : B.depth() - v.db) < kParallelLevels) {
+#if EMBER_WIDE_LANES
+    if (wide) return subtree_pairs_wide(grid, as, bs, v, sink);
+#endif
+    return subtree_pairs<false>(grid, as, bs, v, sink);
   }
+  // Only here, above the small subtrees: one relaxed load per task. (A proof
+  // that finds a self-intersection sets it; the sliver pile's speculative
+  // run otherwise searched its twin rods' ~all-pairs to the end.)
+  if (stop.load(std::memory_order_relaxed)) return;
+  const auto child = [&](std::size_t c) {
+    const NodePair w = split_a ? NodePair{2 * v.a + 1 + c, v.b, v.da + 1, v.db} : NodePair{v.a, 2 * v.b + 1 + c, v.da, v.db + 1};
+    if (overlap(A.node(w.a), B.node(w.b))) meeting_pairs(grid, as, bs, w, sink, stop, wide);
+  };
+  tbb::parallel_invoke([&] { child(0); }, [&] { child(1); });
 }
 
 }  // namespace
@@ -164,7 +196,7 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
     for (std::size_t b = a + 1; b < operands; ++b) {
       const Side as{trees.tree[a], trees.diagonals[a], trees.begin[a]}, bs{trees.tree[b], trees.diagonals[b], trees.begin[b]};
       if (!as.tree.empty() && !bs.tree.empty() && overlap(as.tree.node(0), bs.tree.node(0)))
-        meeting_pairs(grid, as, 0, 0, bs, 0, 0, sink, stop, wide);
+        meeting_pairs(grid, as, bs, NodePair{0, 0, 0, 0}, sink, stop, wide);
     }
   // Counting sort by triangle, then each list ascending (lists are short,
   // and the result does not depend on the order pairs were found in).
