@@ -8,7 +8,9 @@
 #include <tbb/task_group.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <cassert>
 #include <bit>
 #include <cstdint>
 #include <optional>
@@ -105,25 +107,53 @@ class Search {
 
   void cross_overlapping(std::size_t a, std::size_t b, int depth, std::size_t& examined) {
     if (done()) return;
-    if (depth == tree().depth()) {
-      leaf_pairs(a, b, examined);
-      return;
+    if (!spawns(depth)) {
+#if EMBER_WIDE_LANES
+      if (wide_) return subtree_cross_wide(a, b, depth, examined);
+#endif
+      return subtree_cross_with<false>(a, b, depth, examined);
     }
     const std::size_t al = 2 * a + 1, ar = 2 * a + 2, bl = 2 * b + 1, br = 2 * b + 2;
-    if (spawns(depth)) {
-      tbb::task_group group;
-      group.run([&] { task([&](std::size_t& e) { cross(al, bl, depth + 1, e); }); });
-      group.run([&] { task([&](std::size_t& e) { cross(al, br, depth + 1, e); }); });
-      group.run([&] { task([&](std::size_t& e) { cross(ar, bl, depth + 1, e); }); });
-      cross(ar, br, depth + 1, examined);
-      group.wait();
-    } else {
-      cross(al, bl, depth + 1, examined);
-      cross(al, br, depth + 1, examined);
-      cross(ar, bl, depth + 1, examined);
-      cross(ar, br, depth + 1, examined);
+    tbb::task_group group;
+    group.run([&] { task([&](std::size_t& e) { cross(al, bl, depth + 1, e); }); });
+    group.run([&] { task([&](std::size_t& e) { cross(al, br, depth + 1, e); }); });
+    group.run([&] { task([&](std::size_t& e) { cross(ar, bl, depth + 1, e); }); });
+    cross(ar, br, depth + 1, examined);
+    group.wait();
+  }
+
+  /// cross_overlapping below the spawning levels, depth first with a stack
+  /// of its own (as a recursion, each node pair cost a call with its
+  /// spills). Both sides descend together: at most three pending pairs per
+  /// level, and a tree of fewer than 2^32 triangles has under 30 levels.
+  template <bool Wide>
+  [[gnu::always_inline]] inline void subtree_cross_with(std::size_t a, std::size_t b, int depth, std::size_t& examined) {
+    struct NodePair {
+      std::size_t a, b;
+      int depth;
+    };
+    assert(tree().depth() < 40);
+    std::array<NodePair, 128> stack;
+    std::size_t top = 0;
+    stack[top++] = {a, b, depth};
+    while (top > 0) {
+      const NodePair v = stack[--top];
+      if (done()) return;
+      if (v.depth == tree().depth()) {
+        leaf_pairs_with<Wide>(v.a, v.b, examined);
+        continue;
+      }
+      // Pushed in reverse: visited in the recursion's order (al-bl, al-br, ar-bl, ar-br).
+      for (std::size_t ca = 2 * v.a + 2; ca > 2 * v.a; --ca)
+        for (std::size_t cb = 2 * v.b + 2; cb > 2 * v.b; --cb)
+          if (overlap(tree().node(ca), tree().node(cb))) stack[top++] = {ca, cb, v.depth + 1};
     }
   }
+#if EMBER_WIDE_LANES
+  EMBER_TARGET_AVX2 void subtree_cross_wide(std::size_t a, std::size_t b, int depth, std::size_t& examined) {
+    subtree_cross_with<true>(a, b, depth, examined);
+  }
+#endif
 
   /// Runs f with a counter of its own and flushes it.
   template <typename F>
