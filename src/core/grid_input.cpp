@@ -95,7 +95,8 @@ namespace {
 
 /// What the grid did to an input triangle (rounding_change).
 int rounding_change(const Mesh& m, const GridTriangle& t) {
-  return core::rounding_change(m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]], t.n);
+  return core::rounding_change(m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]],
+                               grid_normal(t.p[0], t.p[1], t.p[2]));
 }
 
 /// f(o) for every operand: side by side for small inputs (side_by_side),
@@ -245,8 +246,7 @@ void triangulate_faces(const Mesh& m, std::uint32_t o, const GridVertices& g, co
       std::size_t out = first + m.face_offsets[f] - 2 * f;
       const auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
         const std::uint32_t va = face[a], vb = face[b], vc = face[c];
-        const std::array<IntPoint, 3> p{g.pos[va], g.pos[vb], g.pos[vc]};
-        gi.triangles[out] = {p, grid_normal(p[0], p[1], p[2]), {va, vb, vc}, o, static_cast<std::uint32_t>(f)};
+        gi.triangles[out] = {{g.pos[va], g.pos[vb], g.pos[vc]}, {va, vb, vc}, o, static_cast<std::uint32_t>(f)};
         gi.vertex_ids[out] = {id[va], id[vb], id[vc]};
         ++out;
       };

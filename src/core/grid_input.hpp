@@ -23,9 +23,6 @@ namespace ember::core {
 
 struct GridTriangle {
   std::array<IntPoint, 3> p;
-  /// grid_normal(p): zero where the grid collapsed the triangle. Once here
-  /// for the audit, the degeneracy filter and GridTriangles::normals.
-  std::array<std::int64_t, 3> n;
   std::array<std::uint32_t, 3> v;  ///< the corners' vertex indices in the operand's mesh
   std::uint32_t operand, face;
 };

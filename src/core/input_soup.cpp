@@ -116,7 +116,8 @@ InputSoup build_soup(const GridInput& gi, const EdgeMatching& edges) {
   id[0] = 0;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      id[i + 1] = gi.triangles[i].n != std::array<std::int64_t, 3>{0, 0, 0};
+      const auto& p = gi.triangles[i].p;
+      id[i + 1] = grid_normal(p[0], p[1], p[2]) != std::array<std::int64_t, 3>{0, 0, 0};
     }
   });
   // Ids in input order over the kept triangles: an exclusive prefix sum.
@@ -152,7 +153,7 @@ InputSoup build_soup(const GridInput& gi, const EdgeMatching& edges) {
       // Unbuilt (soup.hpp): it points at its corners, which live in the
       // grid table for the whole Boolean. It has area: pass 1.
       in.grid.corners[k] = t.p;
-      in.grid.normals[k] = t.n;
+      in.grid.normals[k] = grid_normal(t.p[0], t.p[1], t.p[2]);
       in.soup[k] = unbuilt_triangle(in.grid.corners[k], k, t.operand);
       in.sources[k] = {t.operand, t.face};
       in.grid.vertex_ids[k] = gi.vertex_ids[i];
