@@ -251,6 +251,16 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     if (may_all_be_solid)
       if (std::optional<std::vector<std::uint32_t>> ranges = core::operand_ranges(root.soup, operands.size()))
         arena.execute([&] { trees = core::build_operand_trees(std::move(*ranges), grid.corners); });
+    // The leaves' diagonal extents and the grid normals serve the two broad
+    // phases only (the proof's contact searches, the partner search): freed
+    // when the last of them ends, before the direct route's peak (56 bytes
+    // per input triangle).
+    std::atomic<int> broad_phases{1};  // the partner search; the proof adds itself
+    const auto broad_phase_done = [&] {
+      if (broad_phases.fetch_sub(1) != 1) return;
+      trees->diagonals = {};
+      grid.normals = {};
+    };
     // With every operand possibly solid, the solid path starts alongside the
     // proof, on the premise the proof is about to establish: a small input's
     // proof and solve are chains of short loops and serial steps that leave
@@ -268,6 +278,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       const std::atomic<bool> never{false};
       const std::atomic<bool>& stop = abandon ? *abandon : never;
       const core::Partners partners = core::find_partners(grid, *trees, root.soup.size(), stop);
+      broad_phase_done();
       if (stop.load()) return route;
       if (direct_allowed)
         route.mesh = core::direct_solid_mesh(root.soup, grid, root.box, c, *trees, partners, q, sources, *topology, stop);
@@ -289,6 +300,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
         report(options, "solid check", 0.1);
         std::vector<core::SolidFinding> findings(unproven.size());
         std::atomic<bool> disproved{false};
+        if (trees) ++broad_phases;
         const auto prove = [&] {
           tbb::parallel_for(std::size_t{0}, unproven.size(), [&](std::size_t k) {
             const std::uint32_t o = unproven[k];
@@ -296,6 +308,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
                                 : core::check_solid(root, grid, o, nullptr, &disproved);
             if (findings[k].verdict != core::SolidVerdict::Solid) disproved = true;
           });
+          if (trees) broad_phase_done();
           proved = std::chrono::steady_clock::now();
         };
         if (trees && threads > 1) {  // one thread would run them one after the other

@@ -45,7 +45,8 @@ inline constexpr std::uint32_t kNoNeighbor = UINT32_MAX;
 struct GridTriangles {
   FillVector<std::array<IntPoint, 3>> corners;
   /// grid_normal of the corners (non-zero: the triangles have area), once
-  /// for the proof, the partner search and the direct route's chords.
+  /// for the proof and the partner search; the Boolean frees them when
+  /// both are done (empty after that).
   FillVector<std::array<std::int64_t, 3>> normals;
   /// Welded vertex ids (weld.hpp): within one operand, equal ids iff equal positions.
   FillVector<std::array<std::uint32_t, 3>> vertex_ids;

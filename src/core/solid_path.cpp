@@ -192,6 +192,7 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
   PairSink sink;
   const bool wide = cpu_has_avx2();
   const std::size_t operands = trees.tree.size();
+  assert(trees.diagonals.size() == operands);  // boolean frees them only after this search
   for (std::size_t a = 0; a < operands; ++a)
     for (std::size_t b = a + 1; b < operands; ++b) {
       const Side as{trees.tree[a], trees.diagonals[a], trees.begin[a]}, bs{trees.tree[b], trees.diagonals[b], trees.begin[b]};

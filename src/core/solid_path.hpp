@@ -55,8 +55,8 @@ struct Partners {
 };
 
 /// Broad and narrow phase: the meeting pairs of the n triangles (ids) of
-/// `trees`' operands. Deterministic (sorted), whatever the schedule;
-/// incomplete (and not to be used) once `stop` is set.
+/// `trees`' operands (their diagonals too). Deterministic (sorted), whatever
+/// the schedule; incomplete (and not to be used) once `stop` is set.
 Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std::size_t n,
                        const std::atomic<bool>& stop);
 
