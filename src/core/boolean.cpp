@@ -251,15 +251,13 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     if (may_all_be_solid)
       if (std::optional<std::vector<std::uint32_t>> ranges = core::operand_ranges(root.soup, operands.size()))
         arena.execute([&] { trees = core::build_operand_trees(std::move(*ranges), grid.corners); });
-    // The leaves' diagonal extents and the grid normals serve the two broad
-    // phases only (the proof's contact searches, the partner search): freed
-    // when the last of them ends, before the direct route's peak (56 bytes
-    // per input triangle).
+    // The leaves' diagonal extents serve the two broad phases only (the
+    // proof's contact searches, the partner search): freed when the last of
+    // them ends, before the direct route's peak (32 bytes per input triangle).
     std::atomic<int> broad_phases{1};  // the partner search; the proof adds itself
     const auto broad_phase_done = [&] {
       if (broad_phases.fetch_sub(1) != 1) return;
       trees->diagonals = {};
-      grid.normals = {};
     };
     // With every operand possibly solid, the solid path starts alongside the
     // proof, on the premise the proof is about to establish: a small input's

@@ -36,8 +36,6 @@ bool crossing_before(i128 xa, i128 xb, i128 ya, i128 yb) {
 
 bool pair_chord(const GridTriangles& grid, const EdgeNames& names, std::uint32_t x, std::uint32_t y, PairChord& out) {
   const std::array<IntPoint, 3>&c = grid.corners[x], &d = grid.corners[y];
-  // Not grid.normals: the Boolean frees them with the broad phases, before
-  // the route (a few thousand pairs, ~20 instructions each).
   const std::array<std::int64_t, 3> n = grid_normal(c[0], c[1], c[2]), nf = grid_normal(d[0], d[1], d[2]);
   i128 st[3], sf[3];  // x's corners against y's plane, y's against x's
   for (int i = 0; i < 3; ++i) {

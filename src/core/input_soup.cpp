@@ -140,7 +140,6 @@ InputSoup build_soup(const GridInput& gi, const EdgeMatching& edges) {
   in.soup.resize(kept);
   in.sources.resize(kept);
   in.grid.corners.resize(kept);
-  in.grid.normals.resize(kept);
   in.grid.vertex_ids.resize(kept);
   in.grid.manifold_edges.resize(kept);
   in.grid.neighbors.resize(kept);
@@ -153,7 +152,6 @@ InputSoup build_soup(const GridInput& gi, const EdgeMatching& edges) {
       // Unbuilt (soup.hpp): it points at its corners, which live in the
       // grid table for the whole Boolean. It has area: pass 1.
       in.grid.corners[k] = t.p;
-      in.grid.normals[k] = grid_normal(t.p[0], t.p[1], t.p[2]);
       in.soup[k] = unbuilt_triangle(in.grid.corners[k], k, t.operand);
       in.sources[k] = {t.operand, t.face};
       in.grid.vertex_ids[k] = gi.vertex_ids[i];

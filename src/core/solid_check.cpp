@@ -145,7 +145,7 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i)
-                        tris[i] = {&grid.corners[members[i]], grid.normals[members[i]], grid.vertex_ids[members[i]], 0};
+                        tris[i] = contact_triangle(grid.corners[members[i]], grid.vertex_ids[members[i]]);
                     });
   // tris holds all of the operand's triangles, as a star must. They are
   // the grid's triangles members[0] .. members[0] + size - 1 (an operand's

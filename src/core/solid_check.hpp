@@ -44,10 +44,6 @@ inline constexpr std::uint32_t kNoNeighbor = UINT32_MAX;
 /// entry in parallel.
 struct GridTriangles {
   FillVector<std::array<IntPoint, 3>> corners;
-  /// grid_normal of the corners (non-zero: the triangles have area), once
-  /// for the proof and the partner search; the Boolean frees them when
-  /// both are done (empty after that).
-  FillVector<std::array<std::int64_t, 3>> normals;
   /// Welded vertex ids (weld.hpp): within one operand, equal ids iff equal positions.
   FillVector<std::array<std::uint32_t, 3>> vertex_ids;
   /// Bit k: edge k is a manifold edge of its operand (EdgeMatching::manifold).
@@ -155,6 +151,10 @@ bool triangles_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint,
 /// triangles_meet_improperly (which ends in it when nothing is shared).
 bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
                           const std::array<IntPoint, 3>& b, const std::array<std::int64_t, 3>& nb);
+/// The same, computing b's normal only when b is not beside a's plane (the
+/// solid path's candidates: most of them are).
+bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
+                          const std::array<IntPoint, 3>& b);
 /// Every corner of `b` lies strictly on one side of the plane of `a` (normal
 /// `na` = grid_normal of a), so the two cannot meet: the cheap rejection that
 /// apart_triangles_meet tries first. Exact.

@@ -232,12 +232,19 @@ bool triangles_meet_improperly(const ContactTriangle& ta, const ContactTriangle&
   return apart_triangles_meet(a, ta.n, b, tb.n);
 }
 
-bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
-                          const std::array<IntPoint, 3>& b, const std::array<std::int64_t, 3>& nb) {
+namespace {
+
+/// apart_triangles_meet, with b's normal from normal_of_b() when the first
+/// test leaves the pair (the solid path's candidates mostly end there, and
+/// need no normal of b).
+template <typename NormalOfB>
+bool apart_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na, const std::array<IntPoint, 3>& b,
+                NormalOfB&& normal_of_b) {
   // b against a's plane first (beside_plane).
   const Sides b_side = sides(a, na, b);
   const i128(&sb)[3] = b_side.s;
   if (strictly_one_side(sb)) return false;
+  const std::array<std::int64_t, 3> nb = normal_of_b();
   const Sides a_side = sides(b, nb, a);
   const i128(&sa)[3] = a_side.s;
   if (strictly_one_side(sa)) return false;
@@ -245,6 +252,18 @@ bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std
   if (sa[0] == 0 && sa[1] == 0 && sa[2] == 0) return coplanar_meet(a, b, Projection(dominant_axis(na)));
   const int signs_a[3] = {sign(sa[0]), sign(sa[1]), sign(sa[2])}, signs_b[3] = {sign(sb[0]), sign(sb[1]), sign(sb[2])};
   return straddling_triangles_meet(a, b, signs_a, signs_b);
+}
+
+}  // namespace
+
+bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
+                          const std::array<IntPoint, 3>& b, const std::array<std::int64_t, 3>& nb) {
+  return apart_meet(a, na, b, [&] { return nb; });
+}
+
+bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
+                          const std::array<IntPoint, 3>& b) {
+  return apart_meet(a, na, b, [&] { return grid_normal(b[0], b[1], b[2]); });
 }
 
 }  // namespace ember::core

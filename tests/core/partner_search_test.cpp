@@ -43,7 +43,6 @@ void expect_exact_partners(const std::vector<std::vector<std::array<IntPoint, 3>
   for (std::size_t o = 0; o < operands.size(); ++o) {
     for (const auto& t : operands[o]) {
       grid.corners.push_back(t);
-      grid.normals.push_back(grid_normal(t[0], t[1], t[2]));
       operand_of.push_back(static_cast<std::uint32_t>(o));
     }
     begin.push_back(static_cast<std::uint32_t>(grid.corners.size()));
