@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <cassert>
 #include <bit>
+#include <cassert>
 #include <cstdint>
 #include <optional>
 #include <vector>

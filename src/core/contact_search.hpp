@@ -12,8 +12,8 @@
 #include <cstddef>
 #include <span>
 
-#include "core/solid_check.hpp"
 #include "core/leaf_diagonals.hpp"
+#include "core/solid_check.hpp"
 #include "core/triangle_tree.hpp"
 
 namespace ember::core {

@@ -26,6 +26,7 @@ static_assert(3 * kCoordLimit < std::numeric_limits<std::int32_t>::max(), "diago
 
 class LeafDiagonals {
  public:
+  LeafDiagonals() = default;  ///< no leaves (filled by assignment)
   /// Over a tree of contact triangles (item i: tris[i]).
   LeafDiagonals(const TriangleTree& tree, std::span<const ContactTriangle> tris) : first_leaf_(tree.first_leaf()) {
     fill(tree, [&](std::uint32_t item) -> const std::array<IntPoint, 3>& { return tris[item].p(); });
@@ -127,7 +128,7 @@ class LeafDiagonals {
   struct alignas(16) Block {
     std::int32_t lo[4][TriangleTree::kLeaf], hi[4][TriangleTree::kLeaf];
   };
-  std::size_t first_leaf_;
+  std::size_t first_leaf_ = 0;
   std::vector<Block> block_;
 };
 

@@ -3,8 +3,6 @@
 
 #include <tbb/parallel_for.h>
 
-#include <optional>
-
 namespace ember::core {
 
 OperandTrees build_operand_trees(std::vector<std::uint32_t> begin, std::span<const std::array<IntPoint, 3>> corners) {
@@ -12,16 +10,14 @@ OperandTrees build_operand_trees(std::vector<std::uint32_t> begin, std::span<con
   t.begin = std::move(begin);
   const std::size_t operands = t.begin.size() - 1;
   t.tree.resize(operands);
-  std::vector<std::optional<LeafDiagonals>> diagonals(operands);
+  t.diagonals.resize(operands);
   tbb::parallel_for(std::size_t{0}, operands, [&](std::size_t o) {
     const std::span<const std::array<IntPoint, 3>> own = corners.subspan(t.begin[o], t.begin[o + 1] - t.begin[o]);
     std::vector<Box32> boxes(own.size());
     for (std::size_t i = 0; i < boxes.size(); ++i) boxes[i] = box_of(own[i]);
     t.tree[o] = TriangleTree(boxes);
-    diagonals[o].emplace(t.tree[o], own);
+    t.diagonals[o] = LeafDiagonals(t.tree[o], own);
   });
-  t.diagonals.reserve(operands);
-  for (std::optional<LeafDiagonals>& d : diagonals) t.diagonals.push_back(std::move(*d));
   return t;
 }
 

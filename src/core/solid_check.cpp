@@ -159,8 +159,7 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
                                      : std::span<const std::array<std::uint32_t, 3>>(),
                          members.front());
   if (tree && tree->size() != tris.size()) tree = nullptr;  // not this operand's: build one (and its diagonals)
-  const ContactSearchResult contacts =
-      find_contacts(tris, OperandReport::kMaxReportedPairs, tree, intersecting, tree ? diagonals : nullptr);
+  const ContactSearchResult contacts = find_contacts(tris, OperandReport::kMaxReportedPairs, tree, intersecting, diagonals);
   tris = {};
   if (contacts.pairs > 0) return {SolidVerdict::SelfIntersecting, contacts.pairs, 0, contacts.complete};
   if (contacts.gave_up) return {SolidVerdict::TooComplex, 0, 0};

@@ -16,11 +16,11 @@
 #include <cassert>
 #include <numeric>
 
+#include "core/operand_trees.hpp"
 #include "core/pieces.hpp"
 #include "core/solid_cuts.hpp"
 #include "core/solid_handover.hpp"
 #include "core/solid_trace.hpp"
-#include "core/operand_trees.hpp"
 
 namespace ember::core {
 
