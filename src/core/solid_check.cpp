@@ -11,6 +11,7 @@
 #include <atomic>
 
 #include "core/contact_search.hpp"
+#include "core/solid_trace.hpp"
 #include "core/vertex_stars.hpp"
 #include "ember/boolean.hpp"
 
@@ -174,12 +175,30 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
   // Each trace scans the whole soup a few times: bound the total work.
   constexpr std::size_t kTraceBudget = std::size_t{1} << 25;
   if (reps.size() > 8 && reps.size() * root.soup.size() > kTraceBudget) return {SolidVerdict::TooComplex, 0, 0};
+  // With the operand's tree (its item i is triangle members.front() + i),
+  // one tree query per trace; a trace that found no non-degenerate path
+  // there, or a proof without a tree, scans the root soup (classify_polygon):
+  // both answers are exact, so the verdict is the same either way.
+  const TriangleTree* own_tree = consecutive ? tree : nullptr;
   std::vector<SolidVerdict> verdict(reps.size(), SolidVerdict::Solid);
   tbb::parallel_for(std::size_t{0}, reps.size(), [&](std::size_t c) {
-    Wnv front, back;
-    if (!classify_polygon(root, root.soup[reps[c]], front, back)) {
+    const SoupPolygon& rep = root.soup[reps[c]];
+    int front = 0, back = 0;
+    bool traced = false;
+    if (own_tree) {
+      TraceScratch sc;
+      Polygon built;
+      traced = own_winding_from_outside(root.soup, *own_tree, members.front(), root.box, root.ref_w.size(),
+                                        built_polygon(rep, built), operand, std::uint64_t{rep.id} << 20, front, back, sc);
+    }
+    if (!traced) {
+      Wnv w_front, w_back;
+      traced = classify_polygon(root, rep, w_front, w_back);
+      if (traced) front = w_front[operand], back = w_back[operand];
+    }
+    if (!traced) {
       verdict[c] = SolidVerdict::Unclassified;
-    } else if (front[operand] != 0 || back[operand] != 1) {
+    } else if (front != 0 || back != 1) {
       verdict[c] = SolidVerdict::WrongWinding;
     }
   });
