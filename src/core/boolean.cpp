@@ -36,9 +36,12 @@ namespace {
 
 /// What the solid path made: the result's mesh (the direct route), or its
 /// pieces for the mesh stage; neither if it declined or was abandoned.
+/// `gave_up`: a speculative run's partner search passed its budget (it runs
+/// again once the proof has passed).
 struct SolidRoute {
   std::optional<core::MeshOutput> mesh;
   std::optional<std::vector<core::OutputPolygon>> polys;
+  bool gave_up = false;
 };
 
 double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
@@ -271,11 +274,22 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     // curve (direct_mesh.hpp); otherwise its pieces, for the mesh stage.
     if (topology) topology->by_triangle = grid.vertex_ids;
     const bool direct_allowed = topology && operands.size() == 2 && options.output == BooleanOptions::Output::Triangles;
+    // A speculative run (`abandon` given) bounds its partner search: where
+    // the operands' triangles crowd each other by the hundreds (the sliver
+    // pile's twin rods), the search would hold a thread for the whole proof,
+    // which then usually fails; past the budget it gives up and, if the
+    // proof passes, runs again afterwards (with the leaf diagonals, kept).
     const auto solid_route = [&](const core::SolveContext& c, const std::atomic<bool>* abandon) {
       SolidRoute route;
       const std::atomic<bool> never{false};
       const std::atomic<bool>& stop = abandon ? *abandon : never;
-      const core::Partners partners = core::find_partners(grid, *trees, root.soup.size(), stop);
+      const std::size_t n = root.soup.size();
+      const std::size_t budget = abandon ? core::kSpeculativePartnersPerTriangle * n + core::kSpeculativeAllowance : SIZE_MAX;
+      const core::Partners partners = core::find_partners(grid, *trees, n, stop, budget);
+      if (partners.gave_up) {
+        route.gave_up = true;
+        return route;
+      }
       broad_phase_done();
       if (stop.load()) return route;
       if (direct_allowed)
@@ -337,7 +351,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       const bool all_solid = std::all_of(ctx.solid.begin(), ctx.solid.end(), [](char s) { return s != 0; });
       if (!all_solid) trees.reset();  // the subdivision does not use them
       if (trees) {
-        SolidRoute route = speculated ? std::move(speculative) : solid_route(ctx, nullptr);
+        SolidRoute route = speculated && !speculative.gave_up ? std::move(speculative) : solid_route(ctx, nullptr);
         result.stats.solid_path = route.mesh || route.polys;
         if (route.mesh) {
           direct_mesh = std::move(route.mesh);

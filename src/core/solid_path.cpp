@@ -33,6 +33,23 @@ std::int32_t extent(const Box32& b) {
 
 using PairSink = tbb::enumerable_thread_specific<std::vector<std::pair<std::uint32_t, std::uint32_t>>>;
 
+/// The partner search's work so far against its budget (find_partners):
+/// the slot pairs of the leaf pairs it visits (kLeaf^2 each; counting per
+/// triangle, as the contact search does, cost the bunny pair twice the
+/// instructions), added up per task in batches of kFlush.
+struct Work {
+  static constexpr std::size_t kFlush = std::size_t{1} << 14;
+  std::size_t budget;
+  std::atomic<std::size_t> examined{0};
+  std::atomic<bool> over{false};
+  /// Adds a task's count; true once the budget is passed.
+  bool flush(std::size_t& local) {
+    if (examined.fetch_add(local, std::memory_order_relaxed) + local > budget) over.store(true);
+    local = 0;
+    return over.load(std::memory_order_relaxed);
+  }
+};
+
 /// popcount(m) > 2 without std::popcount, which compiles to a libgcc call
 /// on the baseline x86-64 target (0.3% of the sliver pile's profile).
 constexpr bool more_than_two_bits(unsigned m) {
@@ -126,19 +143,25 @@ bool descend_a(const TriangleTree& A, const TriangleTree& B, const NodePair& v) 
 /// and spills (the bunny pair visits 145k of them for its 55k leaf pairs).
 /// A descent adds at most one pending pair per level of either tree, and
 /// a tree holds fewer than 2^32 triangles, 8 per leaf (< 30 levels).
+/// Stops once the search is over its budget or `stop` is set (checked at
+/// each flush of the work count).
 template <bool Wide>
 [[gnu::always_inline]] inline void subtree_pairs(const GridTriangles& grid, const Side& as, const Side& bs,
-                                                 const NodePair& root, PairSink& sink) {
+                                                 const NodePair& root, PairSink& sink, Work& work,
+                                                 const std::atomic<bool>& stop) {
   const TriangleTree &A = as.tree, &B = bs.tree;
   assert(A.depth() + B.depth() < 126);
   std::array<NodePair, 128> stack;
   std::size_t top = 0;
   stack[top++] = root;
+  std::size_t examined = 0;
   while (top > 0) {
     const NodePair v = stack[--top];
     if (v.da == A.depth() && v.db == B.depth()) {
       if (A.leaf_slots(v.a).first < A.size() && B.leaf_slots(v.b).first < B.size())  // else an empty leaf
         leaf_pair<Wide>(grid, as, v.a, bs, v.b, sink);
+      examined += TriangleTree::kLeaf * TriangleTree::kLeaf;
+      if (examined >= Work::kFlush && (work.flush(examined) || stop.load(std::memory_order_relaxed))) return;
       continue;
     }
     // Child 1 pushed first: child 0 is visited first, as the recursion did.
@@ -150,12 +173,14 @@ template <bool Wide>
         if (overlap(A.node(v.a), B.node(c))) stack[top++] = {v.a, c, v.da, v.db + 1};
     }
   }
+  work.flush(examined);
 }
 
 #if EMBER_WIDE_LANES
 EMBER_TARGET_AVX2 void subtree_pairs_wide(const GridTriangles& grid, const Side& as, const Side& bs,
-                                          const NodePair& root, PairSink& sink) {
-  subtree_pairs<true>(grid, as, bs, root, sink);
+                                          const NodePair& root, PairSink& sink, Work& work,
+                                          const std::atomic<bool>& stop) {
+  subtree_pairs<true>(grid, as, bs, root, sink, work, stop);
 }
 #endif
 
@@ -163,26 +188,27 @@ EMBER_TARGET_AVX2 void subtree_pairs_wide(const GridTriangles& grid, const Side&
 /// triangles_meet) under node pair v, whose boxes overlap (the caller tests
 /// them: most child pairs do not overlap, and the test costs less than a
 /// call). Large subtrees as parallel tasks, the rest by subtree_pairs. Stops
-/// early once `stop` is set (the run is abandoned: the pairs are not used).
-/// wide: cpu_has_avx2().
+/// early once `stop` is set (the run is abandoned: the pairs are not used)
+/// or the work passes its budget. wide: cpu_has_avx2().
 void meeting_pairs(const GridTriangles& grid, const Side& as, const Side& bs, const NodePair& v, PairSink& sink,
-                   const std::atomic<bool>& stop, bool wide) {
+                   Work& work, const std::atomic<bool>& stop, bool wide) {
   const TriangleTree &A = as.tree, &B = bs.tree;
   constexpr int kParallelLevels = 6;
   const bool split_a = descend_a(A, B, v);
   if ((split_a ? A.depth() - v.da : B.depth() - v.db) < kParallelLevels) {
 #if EMBER_WIDE_LANES
-    if (wide) return subtree_pairs_wide(grid, as, bs, v, sink);
+    if (wide) return subtree_pairs_wide(grid, as, bs, v, sink, work, stop);
 #endif
-    return subtree_pairs<false>(grid, as, bs, v, sink);
+    return subtree_pairs<false>(grid, as, bs, v, sink, work, stop);
   }
-  // Only here, above the small subtrees: one relaxed load per task. (A proof
-  // that finds a self-intersection sets it; the sliver pile's speculative
-  // run otherwise searched its twin rods' ~all-pairs to the end.)
-  if (stop.load(std::memory_order_relaxed)) return;
+  // Here, above the small subtrees, once per task (and in them once per
+  // flush of the work count). (A proof that finds a self-intersection sets
+  // `stop`; the sliver pile's speculative run otherwise searched its twin
+  // rods' ~all-pairs to the end.)
+  if (stop.load(std::memory_order_relaxed) || work.over.load(std::memory_order_relaxed)) return;
   const auto child = [&](std::size_t c) {
     const NodePair w = split_a ? NodePair{2 * v.a + 1 + c, v.b, v.da + 1, v.db} : NodePair{v.a, 2 * v.b + 1 + c, v.da, v.db + 1};
-    if (overlap(A.node(w.a), B.node(w.b))) meeting_pairs(grid, as, bs, w, sink, stop, wide);
+    if (overlap(A.node(w.a), B.node(w.b))) meeting_pairs(grid, as, bs, w, sink, work, stop, wide);
   };
   tbb::parallel_invoke([&] { child(0); }, [&] { child(1); });
 }
@@ -190,8 +216,9 @@ void meeting_pairs(const GridTriangles& grid, const Side& as, const Side& bs, co
 }  // namespace
 
 Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std::size_t n,
-                       const std::atomic<bool>& stop) {
+                       const std::atomic<bool>& stop, std::size_t budget) {
   PairSink sink;
+  Work work{budget};
   const bool wide = cpu_has_avx2();
   const std::size_t operands = trees.tree.size();
   assert(trees.diagonals.size() == operands);  // boolean frees them only after this search
@@ -199,11 +226,15 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
     for (std::size_t b = a + 1; b < operands; ++b) {
       const Side as{trees.tree[a], trees.diagonals[a], trees.begin[a]}, bs{trees.tree[b], trees.diagonals[b], trees.begin[b]};
       if (!as.tree.empty() && !bs.tree.empty() && overlap(as.tree.node(0), bs.tree.node(0)))
-        meeting_pairs(grid, as, bs, NodePair{0, 0, 0, 0}, sink, stop, wide);
+        meeting_pairs(grid, as, bs, NodePair{0, 0, 0, 0}, sink, work, stop, wide);
     }
+  Partners p;
+  if (work.over.load()) {
+    p.gave_up = true;
+    return p;
+  }
   // Counting sort by triangle, then each list ascending (lists are short,
   // and the result does not depend on the order pairs were found in).
-  Partners p;
   p.begin.assign(n + 1, 0);
   for (const auto& local : sink)
     for (const auto& [x, y] : local) {

@@ -37,6 +37,7 @@
 #include <atomic>
 #include <optional>
 #include <span>
+#include <cstdint>
 #include <vector>
 
 #include "core/operand_trees.hpp"
@@ -47,18 +48,32 @@ namespace ember::core {
 
 /// The meeting pairs of triangles of different operands (step 1), both
 /// ways, grouped by triangle: partners of id are ids[begin[id] ..
-/// begin[id + 1]), ascending.
+/// begin[id + 1]), ascending. None, with gave_up, when the search passed
+/// its budget.
 struct Partners {
   std::vector<std::uint32_t> begin, ids;
+  bool gave_up = false;
   bool touched(std::uint32_t id) const { return begin[id + 1] > begin[id]; }
   std::span<const std::uint32_t> of(std::uint32_t id) const { return {ids.data() + begin[id], begin[id + 1] - begin[id]}; }
 };
 
 /// Broad and narrow phase: the meeting pairs of the n triangles (ids) of
 /// `trees`' operands (their diagonals too). Deterministic (sorted), whatever
-/// the schedule; incomplete (and not to be used) once `stop` is set.
+/// the schedule; incomplete (and not to be used) once `stop` is set. Gives
+/// up (Partners::gave_up) once the slot pairs of the leaf pairs it visited
+/// (TriangleTree::kLeaf^2 each) pass `budget`.
 Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std::size_t n,
-                       const std::atomic<bool>& stop);
+                       const std::atomic<bool>& stop, std::size_t budget = SIZE_MAX);
+
+/// The budget of a partner search started before the proof of its premise
+/// ended (boolean.cpp), per input triangle (plus kSpeculativeAllowance): the
+/// search gives up, and runs again once the proof has passed. In those
+/// units the pair and paper cases of the benchmark visit at most 113 per
+/// triangle (EMBER case 582; the bunny pair 70); the sliver pile's twin
+/// rods, which the proof then rejects, 2,888: their search held one of two
+/// threads for the proof's whole 0.55 s.
+inline constexpr std::size_t kSpeculativePartnersPerTriangle = 512;
+inline constexpr std::size_t kSpeculativeAllowance = std::size_t{1} << 16;
 
 /// The Boolean of the root soup (polygon i has id i, grid.corners[i] its
 /// corners; every operand solid in `ctx`; `trees` its operands' triangle

@@ -92,5 +92,30 @@ TEST(PartnerSearch, ThreeOperandsPairEveryTwo) {
   EXPECT_GT(meeting, 200u) << meeting;
 }
 
+/// A partner search started before the proof ended is bounded
+/// (kSpeculativePartnersPerTriangle): past its budget it gives up and
+/// reports no pairs; within it the answer is the exact one.
+TEST(PartnerSearch, GivesUpPastItsBudgetAndOnlyThen) {
+  std::mt19937 rng(74);
+  // Crowded: nearly every box meets nearly every other (~200 x 150 box pairs).
+  const auto a = random_triangles(rng, 200, 4, 3), b = random_triangles(rng, 150, 4, 2);
+  core::GridTriangles grid;
+  grid.corners.assign(a.begin(), a.end());
+  grid.corners.insert(grid.corners.end(), b.begin(), b.end());
+  const std::size_t n = grid.corners.size();
+  const core::OperandTrees trees = core::build_operand_trees({0, 200, static_cast<std::uint32_t>(n)}, grid.corners);
+  const std::atomic<bool> never{false};
+  const core::Partners all = core::find_partners(grid, trees, n, never);
+  ASSERT_FALSE(all.gave_up);
+  ASSERT_GT(all.ids.size(), 1000u);
+  const core::Partners bounded = core::find_partners(grid, trees, n, never, 1000);
+  EXPECT_TRUE(bounded.gave_up);
+  EXPECT_TRUE(bounded.ids.empty());
+  const core::Partners roomy = core::find_partners(grid, trees, n, never, 1000 * n);
+  EXPECT_FALSE(roomy.gave_up);
+  EXPECT_EQ(roomy.begin, all.begin);
+  EXPECT_EQ(roomy.ids, all.ids);
+}
+
 }  // namespace
 }  // namespace ember::test

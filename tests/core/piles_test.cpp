@@ -3,6 +3,7 @@
 // Times are reported from the CLI (docs/core.md), not asserted here.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <optional>
 
 #include "core/solve.hpp"
@@ -10,6 +11,75 @@
 
 namespace ember::test {
 namespace {
+
+/// Keeps the first run's mesh; every later run's must be the same, byte for byte.
+void expect_same_as_first(std::optional<Mesh>& first, const Mesh& mesh, int threads) {
+  if (!first) {
+    first = mesh;
+    return;
+  }
+  EXPECT_EQ(mesh.vertices, first->vertices) << threads << " threads";
+  EXPECT_EQ(mesh.indices, first->indices) << threads << " threads";
+  EXPECT_EQ(mesh.face_offsets, first->face_offsets) << threads << " threads";
+}
+
+/// A closed n-gon prism (radius 1, `length` long) along the diagonal
+/// direction (1, 0.8, 0.6), its cross-section turned by `turn` and its base
+/// moved by `shift` along the axis; caps fanned from their centres. Every
+/// side triangle spans the whole rod, so its box meets every other side
+/// triangle's.
+Mesh diagonal_prism(int n, double length, double turn, double shift) {
+  const double s = std::sqrt(1 + 0.64 + 0.36);
+  const std::array<double, 3> d{1 / s, 0.8 / s, 0.6 / s};
+  std::array<double, 3> u{d[1], -d[0], 0};  // orthogonal to d
+  const double lu = std::hypot(u[0], u[1]);
+  for (double& x : u) x /= lu;
+  const std::array<double, 3> v{d[1] * u[2] - d[2] * u[1], d[2] * u[0] - d[0] * u[2], d[0] * u[1] - d[1] * u[0]};
+  Mesh m;
+  const auto point = [&](double angle, double along) {
+    const double c = std::cos(angle), sn = std::sin(angle);
+    return Vec3d{c * u[0] + sn * v[0] + along * d[0], c * u[1] + sn * v[1] + along * d[1], c * u[2] + sn * v[2] + along * d[2]};
+  };
+  const auto id = [&](int i, int ring) { return static_cast<std::uint32_t>(2 * (i % n) + ring); };
+  for (int i = 0; i < n; ++i) {
+    const double a = turn + 2 * M_PI * i / n;
+    m.vertices.push_back(point(a, shift));
+    m.vertices.push_back(point(a, shift + length));
+  }
+  const auto centre = [&](double along) {
+    m.vertices.push_back({along * d[0], along * d[1], along * d[2]});
+    return static_cast<std::uint32_t>(m.vertices.size() - 1);
+  };
+  const std::uint32_t bottom = centre(shift), top = centre(shift + length);
+  for (int i = 0; i < n; ++i) {
+    // u x v = d: counter-clockwise around d, so (b_i, b_i+1, t_i+1) faces outward.
+    m.add_face({id(i, 0), id(i + 1, 0), id(i + 1, 1)});
+    m.add_face({id(i, 0), id(i + 1, 1), id(i, 1)});
+    m.add_face({bottom, id(i + 1, 0), id(i, 0)});
+    m.add_face({top, id(i, 1), id(i + 1, 1)});
+  }
+  return m;
+}
+
+/// Two solid rods of long side triangles crossing along their whole length:
+/// each triangle's box meets hundreds of the other rod's, past the budget of
+/// the partner search that starts alongside the proof
+/// (kSpeculativePartnersPerTriangle). It gives up, and once the proof has
+/// passed the solid path runs again: the same result at every thread count.
+TEST(Piles, CrowdedSolidRodsTakeTheSolidPathAtEveryThreadCount) {
+  const std::vector<Mesh> rods{diagonal_prism(1000, 100, 0, 0), diagonal_prism(1000, 100, M_PI / 1000, 0.5)};
+  std::optional<Mesh> first;
+  for (const int threads : {1, 2, 3}) {
+    BooleanOptions opt;
+    opt.threads = threads;
+    const BooleanResult r = boolean(rods, Operation::Union, opt);
+    EXPECT_EQ(r.stats.solid_operands, 2u);
+    EXPECT_TRUE(r.stats.solid_path);
+    EXPECT_TRUE(r.warnings.empty());
+    expect_same_as_first(first, r.mesh, threads);
+  }
+  EXPECT_NEAR(volume(*first), 100.5 * 1000 * std::sin(2 * M_PI / 1000) / 2, 2.0);
+}
 
 /// The split rule: a split pays while (n + s)^2 < 2 n^2, s < 0.414 n.
 TEST(Piles, SplitPaysWhileFewerThanSqrt2Minus1OfThePolygonsStraddle) {
@@ -63,13 +133,7 @@ TEST(Piles, GeneralPathPileIsTheSameAtEveryThreadCount) {
     const BooleanResult r = run_checked(cubes, Operation::Union, opt, 0);
     EXPECT_EQ(r.stats.solid_operands, 0u);
     EXPECT_DOUBLE_EQ(volume(r.mesh), 1 + (kCubes - 1) * kStep);
-    if (!first) {
-      first = r.mesh;
-      continue;
-    }
-    EXPECT_EQ(r.mesh.vertices, first->vertices) << threads << " threads";
-    EXPECT_EQ(r.mesh.indices, first->indices) << threads << " threads";
-    EXPECT_EQ(r.mesh.face_offsets, first->face_offsets) << threads << " threads";
+    expect_same_as_first(first, r.mesh, threads);
   }
 }
 
