@@ -172,14 +172,17 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
   std::vector<std::uint32_t> reps;
   for (const std::uint32_t m : members)
     if (component[m] == m) reps.push_back(m);
-  // Each trace scans the whole soup a few times: bound the total work.
-  constexpr std::size_t kTraceBudget = std::size_t{1} << 25;
-  if (reps.size() > 8 && reps.size() * root.soup.size() > kTraceBudget) return {SolidVerdict::TooComplex, 0, 0};
   // With the operand's tree (its item i is triangle members.front() + i),
   // one tree query per trace; a trace that found no non-degenerate path
   // there, or a proof without a tree, scans the root soup (classify_polygon):
-  // both answers are exact, so the verdict is the same either way.
+  // both answers are exact, so the verdict is the same either way. Each scan
+  // reads the whole soup a few times: their total work is bounded (an
+  // operand of many components, past the bound, is not proven without a
+  // tree, and its failed tree traces are not retried).
   const TriangleTree* own_tree = consecutive ? tree : nullptr;
+  constexpr std::size_t kScanBudget = std::size_t{1} << 25;
+  const bool scans_affordable = reps.size() <= 8 || reps.size() * root.soup.size() <= kScanBudget;
+  if (!own_tree && !scans_affordable) return {SolidVerdict::TooComplex, 0, 0};
   std::vector<SolidVerdict> verdict(reps.size(), SolidVerdict::Solid);
   tbb::parallel_for(std::size_t{0}, reps.size(), [&](std::size_t c) {
     const SoupPolygon& rep = root.soup[reps[c]];
@@ -191,7 +194,7 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
       traced = own_winding_from_outside(root.soup, *own_tree, members.front(), root.box, root.ref_w.size(),
                                         built_polygon(rep, built), operand, std::uint64_t{rep.id} << 20, front, back, sc);
     }
-    if (!traced) {
+    if (!traced && scans_affordable) {
       Wnv w_front, w_back;
       traced = classify_polygon(root, rep, w_front, w_back);
       if (traced) front = w_front[operand], back = w_back[operand];

@@ -280,6 +280,23 @@ TEST(SolidProof, ClosedOutwardShapesAreSolid) {
   EXPECT_EQ(solid_operands({two, hollow}), 2u);
 }
 
+/// One trace per component, each through the operand's tree: an operand of
+/// 1,728 disjoint boxes is proven too (components x soup size = 1,728 x
+/// 20,748 > 2^25, past the budget of traces that scan the whole soup,
+/// which used to leave it unproven).
+TEST(SolidProof, AnOperandOfManyComponentsIsProven) {
+  std::vector<Mesh> boxes;
+  for (int x = 0; x < 12; ++x)
+    for (int y = 0; y < 12; ++y)
+      for (int z = 0; z < 12; ++z) boxes.push_back(box({1.0 * x, 1.0 * y, 1.0 * z}, {x + 0.5, y + 0.5, z + 0.5}));
+  const Mesh many = merge(boxes);
+  ASSERT_EQ(many.face_count(), 1728u * 12);
+  const BooleanResult r = run_checked({many, box({2.25, 2.25, 2.25}, {7.25, 7.25, 7.25})}, Operation::Union);
+  EXPECT_EQ(r.stats.operands[0].solid, SolidStatus::Proven);
+  EXPECT_EQ(r.stats.solid_operands, 2u);
+  EXPECT_TRUE(r.warnings.empty());
+}
+
 TEST(SolidProof, RejectsWhatTheShortcutsCannotHandle) {
   const Mesh ball = icosphere({0, 0, 0}, 1.0, 2);
   const Mesh other = box({-2, -2, -2}, {-1.5, -1.5, -1.5});
