@@ -55,8 +55,9 @@ struct LeafScratch {
 /// the filter puts every vertex strictly on one side (most polygons a pile
 /// leaf's frame grid offers). Filtering first and then calling
 /// touches_plane, which filtered again, was 12% of the sliver pile's solve.
-bool touches_plane_filtered(std::span<const std::array<double, 3>> verts, const Polygon& poly, const Plane& plane,
-                            const LeafPlaneFilter& filter, std::vector<std::int8_t>& signs) {
+bool touches_plane_filtered(std::span<const std::array<double, 3>> verts, std::span<const std::uint8_t> grid,
+                            const Polygon& poly, const Plane& plane, const LeafPlaneFilter& filter,
+                            std::vector<std::int8_t>& signs) {
   constexpr int kUnsure = LeafPlaneFilter::kUnsure;
   const std::size_t n = verts.size();
   signs.resize(n);
@@ -72,7 +73,13 @@ bool touches_plane_filtered(std::span<const std::array<double, 3>> verts, const 
   bool zero = false;
   for (std::size_t v = 0; v < n; ++v) {
     if (signs[v] != kUnsure) continue;
-    const int s = classify_exact(poly.vertices[v], plane);
+    // A grid point's approximation is exact: the integer test without
+    // reading the vertex (SoupApprox::grid).
+    const std::array<double, 3>& f = verts[v];
+    const int s = grid[v] ? classify(IntPoint{static_cast<std::int64_t>(f[0]), static_cast<std::int64_t>(f[1]),
+                                              static_cast<std::int64_t>(f[2])},
+                                     plane)
+                          : classify_exact(poly.vertices[v], plane);
     signs[v] = static_cast<std::int8_t>(s);
     zero |= s == 0;
     neg |= s < 0;
@@ -135,7 +142,8 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
     // Coplanar first: one plane comparison instead of exact zero tests of
     // every vertex (stacks are full of them).
     if (direction[i] != t_direction || !coplanar(t.poly->support, o.poly->support)) {
-      if (!(sc.approx ? touches_plane_filtered(sc.approx->of(i), *o.poly, t.poly->support, t_filter, sc.other_signs)
+      if (!(sc.approx ? touches_plane_filtered(sc.approx->of(i), sc.approx->grid_of(i), *o.poly, t.poly->support,
+                                               t_filter, sc.other_signs)
                       : touches_plane(*o.poly, t.poly->support, t_approx, sc.other_signs)))
         return;
       for (const std::int8_t v : sc.other_signs) {

@@ -74,18 +74,25 @@ bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, con
 
 void approximate(const Soup& soup, SoupApprox& out) {
   out.verts.clear();
+  out.grid.clear();
   out.begin.assign(1, 0);
   out.normal_sign.clear();
   for (const SoupPolygon& p : soup) {
     std::array<std::int8_t, 3> sign;
     if (unbuilt(p)) {
       // Grid points are exact in double; the grid normal is the support's.
-      for (const IntPoint& c : *p.corners)
+      for (const IntPoint& c : *p.corners) {
         out.verts.push_back({static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z)});
+        out.grid.push_back(1);
+      }
       const std::array<std::int64_t, 3> n = grid_normal((*p.corners)[0], (*p.corners)[1], (*p.corners)[2]);
       for (int a = 0; a < 3; ++a) sign[a] = static_cast<std::int8_t>((n[a] > 0) - (n[a] < 0));
     } else {
-      for (const Point& v : p.poly->vertices) out.verts.push_back(approx(v));
+      for (const Point& v : p.poly->vertices) {
+        out.verts.push_back(approx(v));
+        // A stored grid point's approximation is its exact coordinates.
+        out.grid.push_back(stored_grid_point(v).has_value() ? 1 : 0);
+      }
       for (int a = 0; a < 3; ++a) sign[a] = static_cast<std::int8_t>(p.poly->support.normal(a).sign());
     }
     out.normal_sign.push_back(sign);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <random>
 
 #include "core/soup.hpp"
@@ -52,19 +53,27 @@ bool random_split(std::mt19937_64& rng, SoupPolygon& p, SplitPath& path) {
   return true;
 }
 
-TEST(Soup, FlatApproximationsFilterLinesLikeThePolygons) {
-  std::mt19937_64 rng(11);
+/// A soup of random triangles with corners in `corners` (sized by the
+/// caller; they must outlive the soup), range(i) for triangle i: a third
+/// stays unbuilt, a third is built uncut, a third is cut four times.
+template <typename Range>
+Soup mixed_soup(std::mt19937_64& rng, std::vector<std::array<IntPoint, 3>>& corners, Range&& range) {
   Soup soup;
-  std::vector<std::array<IntPoint, 3>> corners(400);
   for (std::uint32_t i = 0; i < corners.size(); ++i) {
-    corners[i] = random_triangle(rng, 1000);
+    corners[i] = random_triangle(rng, range(i));
     soup.push_back(unbuilt_triangle(corners[i], i, i % 2));
     SplitPath path;
-    // A third stays unbuilt, a third is built uncut, a third is cut.
     if (i % 3 == 1) materialize(soup.back());
     if (i % 3 == 2)
       for (int k = 0; k < 4; ++k) random_split(rng, soup.back(), path);
   }
+  return soup;
+}
+
+TEST(Soup, FlatApproximationsFilterLinesLikeThePolygons) {
+  std::mt19937_64 rng(11);
+  std::vector<std::array<IntPoint, 3>> corners(400);
+  const Soup soup = mixed_soup(rng, corners, [](std::uint32_t) { return std::int64_t{1000}; });
   SoupApprox flat;
   approximate(soup, flat);
   ASSERT_EQ(flat.begin.size(), soup.size() + 1);
@@ -83,6 +92,40 @@ TEST(Soup, FlatApproximationsFilterLinesLikeThePolygons) {
   // Both answers occur often, or the comparison proves little.
   EXPECT_GT(misses, checked / 4);
   EXPECT_LT(misses, checked);
+}
+
+/// gather's undecided vertices are tested from the flat approximation when
+/// SoupApprox::grid marks them grid points: exactly the grid points, whose
+/// approximations are their coordinates.
+TEST(Soup, FlatApproximationsMarkExactlyTheGridPoints) {
+  std::mt19937_64 rng(12);
+  std::vector<std::array<IntPoint, 3>> corners(300);
+  const Soup soup = mixed_soup(rng, corners, [](std::uint32_t i) { return i % 2 == 0 ? std::int64_t{1000} : kCoordLimit; });
+  SoupApprox flat;
+  approximate(soup, flat);
+  ASSERT_EQ(flat.grid.size(), flat.verts.size());
+  std::size_t grid = 0, other = 0;
+  Polygon scratch;
+  for (std::size_t i = 0; i < soup.size(); ++i) {
+    const Polygon& poly = built_polygon(soup[i], scratch);
+    const auto approx = flat.of(i);
+    const auto marked = flat.grid_of(i);
+    ASSERT_EQ(marked.size(), poly.vertices.size());
+    for (std::size_t v = 0; v < marked.size(); ++v) {
+      const std::optional<IntPoint> g = stored_grid_point(poly.vertices[v]);
+      ASSERT_EQ(marked[v] != 0, g.has_value()) << "polygon " << i << " vertex " << v;
+      if (!g) {
+        ++other;
+        continue;
+      }
+      ++grid;
+      EXPECT_EQ(approx[v][0], static_cast<double>(g->x));
+      EXPECT_EQ(approx[v][1], static_cast<double>(g->y));
+      EXPECT_EQ(approx[v][2], static_cast<double>(g->z));
+    }
+  }
+  EXPECT_GT(grid, 300u);  // corners, whole or kept by the cuts
+  EXPECT_GT(other, 100u);  // and the cuts' new vertices
 }
 
 TEST(Soup, LeafPlaneFilterSignsAgreeWithTheExactTest) {
