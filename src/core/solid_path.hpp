@@ -35,9 +35,9 @@
 // same point set as the subdivision's (the pieces differ: no split-plane
 // cuts), so the mesh stage makes the same surfaces.
 #include <atomic>
+#include <cstdint>
 #include <optional>
 #include <span>
-#include <cstdint>
 #include <vector>
 
 #include "core/operand_trees.hpp"

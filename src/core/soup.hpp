@@ -68,6 +68,7 @@ bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, con
 /// normal signs: the filters of traces and of the leaf's gather read them
 /// without chasing every polygon's buffers (a leaf tests each of its polygons
 /// against every trace segment). Built or unbuilt polygons alike.
+static_assert(kCoordLimit < (std::int64_t{1} << 53), "a grid coordinate is exact in double (SoupApprox::grid)");
 struct SoupApprox {
   std::vector<std::array<double, 3>> verts;
   /// Per vertex: 1 if it is a grid point (stored_grid_point), whose
