@@ -12,6 +12,7 @@
 //  * orient: with M the largest |coordinate| involved, every difference errs by
 //    < 18uM, every product by < 80uM^2, the determinant by < 170uM^2; the
 //    filter accepts |det| > 256uM^2.
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -92,29 +93,45 @@ inline int compare_lex(const Point& a, const Point& b) {
   return 0;
 }
 
+namespace detail {
+/// orient2d_dropped's exact evaluation, for the few calls its filter cannot
+/// decide: out of line, so that the filter inlines into the hot loops (ear
+/// clipping calls it tens of thousands of times per curved result).
+[[gnu::noinline]] inline int orient2d_exact(const Point& a, const Point& b, const Point& c, int u, int v) {
+  // det [a_u a_v a_w; b_u b_v b_w; c_u c_v c_w] = a_w b_w c_w * (2D orientation); w > 0.
+  const PointXYZ &xu = coord(a, u), &xv = coord(a, v);
+  const PointXYZ &yu = coord(b, u), &yv = coord(b, v);
+  const PointXYZ &zu = coord(c, u), &zv = coord(c, v);
+  const ProjectedMinor m_bc = yu * zv - yv * zu;
+  const ProjectedMinor m_ac = xu * zv - xv * zu;
+  const ProjectedMinor m_ab = xu * yv - xv * yu;
+  const Orient2Value d = a.w * m_bc - b.w * m_ac + c.w * m_ab;
+  return d.sign();
+}
+}  // namespace detail
+
+/// orient2d_dropped with the projection's axes given: u = (drop + 1) mod 3,
+/// v = (drop + 2) mod 3 (callers that orient many triples in one plane
+/// compute them once).
+inline int orient2d_uv(const Point& a, const Point& b, const Point& c, int u, int v) {
+  const double au = a.f[u], av = a.f[v], bu = b.f[u], bv = b.f[v], cu = c.f[u], cv = c.f[v];
+  const double det = (bu - au) * (cv - av) - (bv - av) * (cu - au);
+  // std::max, not std::fmax (a libm call each): the approximations are
+  // finite, and a NaN det would fail both tests below and go exact anyway.
+  const double m = std::max({std::fabs(au), std::fabs(av), std::fabs(bu), std::fabs(bv), std::fabs(cu), std::fabs(cv)});
+  const double bound = 256 * 0x1p-53 * m * m;
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  return detail::orient2d_exact(a, b, c, u, v);
+}
+
 /// Orientation of a, b, c projected along `drop` onto the coordinates
 /// (u, v) = (drop+1, drop+2) mod 3: +1 counter-clockwise, -1 clockwise, 0
 /// collinear. Seen from the +e_drop side, so for points on a plane whose
 /// normal has a positive component along `drop`, +1 means counter-clockwise
 /// around that normal.
 inline int orient2d_dropped(const Point& a, const Point& b, const Point& c, int drop) {
-  const int u = (drop + 1) % 3, v = (drop + 2) % 3;
-  const double au = a.f[u], av = a.f[v], bu = b.f[u], bv = b.f[v], cu = c.f[u], cv = c.f[v];
-  const double det = (bu - au) * (cv - av) - (bv - av) * (cu - au);
-  const double m = std::fmax(std::fmax(std::fmax(std::fabs(au), std::fabs(av)), std::fmax(std::fabs(bu), std::fabs(bv))),
-                             std::fmax(std::fabs(cu), std::fabs(cv)));
-  const double bound = 256 * 0x1p-53 * m * m;
-  if (det > bound) return 1;
-  if (det < -bound) return -1;
-  // det [a_u a_v a_w; b_u b_v b_w; c_u c_v c_w] = a_w b_w c_w * (2D orientation); w > 0.
-  const PointXYZ &xu = detail::coord(a, u), &xv = detail::coord(a, v);
-  const PointXYZ &yu = detail::coord(b, u), &yv = detail::coord(b, v);
-  const PointXYZ &zu = detail::coord(c, u), &zv = detail::coord(c, v);
-  const ProjectedMinor m_bc = yu * zv - yv * zu;
-  const ProjectedMinor m_ac = xu * zv - xv * zu;
-  const ProjectedMinor m_ab = xu * yv - xv * yu;
-  const Orient2Value d = a.w * m_bc - b.w * m_ac + c.w * m_ab;
-  return d.sign();
+  return orient2d_uv(a, b, c, drop == 2 ? 0 : drop + 1, drop == 0 ? 2 : drop - 1);
 }
 
 }  // namespace ember
