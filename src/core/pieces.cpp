@@ -56,17 +56,19 @@ bool split_by_transverse(const Polygon& poly, const Plane& support, const Polygo
     below |= s < 0;
     above |= s > 0;
   }
-  if (!(below && above)) return false;
-  const ChordOverlap filtered = filter_chords(poly, support, signs, other, other.support, other_signs);
-  if (filtered == ChordOverlap::kNo) return false;
-  if (filtered == ChordOverlap::kUnsure) {
-    if (chords_separated_by_edge(poly, other)) return false;
-    cons.clear();
-    chord_constraints(poly, signs, cons);
-    chord_constraints(other, other_signs, cons);
-    if (!line_region_has_length(support, other.support, cons)) return false;
-  }
+  if (!(below && above) || !chords_overlap(poly, support, signs, other, other_signs, cons)) return false;
   return clip(poly, signs, other.support, neg, pos) == ClipSide::Both;
+}
+
+bool chords_overlap(const Polygon& poly, const Plane& support, const std::vector<std::int8_t>& signs,
+                    const Polygon& other, const std::vector<std::int8_t>& other_signs, std::vector<Plane>& cons) {
+  const ChordOverlap filtered = filter_chords(poly, support, signs, other, other.support, other_signs);
+  if (filtered != ChordOverlap::kUnsure) return filtered == ChordOverlap::kYes;
+  if (chords_separated_by_edge(poly, other)) return false;
+  cons.clear();
+  chord_constraints(poly, signs, cons);
+  chord_constraints(other, other_signs, cons);
+  return line_region_has_length(support, other.support, cons);
 }
 
 void cut_by_transverse(std::vector<Piece>& pieces, std::size_t i, const Plane& support, const Polygon& other,

@@ -26,6 +26,15 @@ bool coplanar_overlap(const Polygon& a, const Polygon& b);
 /// scratch (a cut piece's old buffers serve the next clip).
 void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& other, Polygon& neg, Polygon& pos);
 
+/// Whether the chord where `other`'s plane crosses `poly` (on `support`;
+/// `signs`: poly's vertices against other's plane, strictly on both sides)
+/// and the chord where `support` crosses `other` (`other_signs`) overlap
+/// with positive length: filter_chords, then the exact test. `cons` is
+/// scratch. The test of split_by_transverse, which pile leaves' gather
+/// also asks (leaf.cpp).
+bool chords_overlap(const Polygon& poly, const Plane& support, const std::vector<std::int8_t>& signs,
+                    const Polygon& other, const std::vector<std::int8_t>& other_signs, std::vector<Plane>& cons);
+
 /// Case C3 for one polygon: true if the other polygon's plane splits `poly`
 /// (on `support`), i.e. their intersection segment crosses poly's interior
 /// with positive length; then the halves are in `neg` and `pos`.

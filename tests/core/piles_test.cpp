@@ -81,6 +81,32 @@ TEST(Piles, CrowdedSolidRodsTakeTheSolidPathAtEveryThreadCount) {
   EXPECT_NEAR(volume(*first), 100.5 * 1000 * std::sin(2 * M_PI / 1000) / 2, 2.0);
 }
 
+/// The same kind of rods on the general path: their leaves are piles
+/// (hundreds of side triangles each), where gather keeps only the polygons
+/// that may share more than one point with t (the end fans' triangles share
+/// one vertex with every side triangle that ends there). Without the solid
+/// check every polygon of both rods is gathered; the result must be the
+/// solid path's surface (run_checked also compares the solid path with the
+/// subdivision on proven operands), watertight, the same at every thread
+/// count.
+TEST(Piles, GeneralPathRodsAgreeWithTheSolidPath) {
+  const std::vector<Mesh> rods{diagonal_prism(200, 40, 0, 0), diagonal_prism(200, 40, M_PI / 200, 0.5)};
+  const BooleanResult solid = run_checked(rods, Operation::Union);
+  ASSERT_TRUE(solid.stats.solid_path);
+  EXPECT_NEAR(volume(solid.mesh), 40.5 * 200 * std::sin(2 * M_PI / 200) / 2, 1.0);
+  std::optional<Mesh> first;
+  for (const int threads : {1, 2}) {
+    BooleanOptions opt;
+    opt.threads = threads;
+    opt.detect_solid = false;
+    const BooleanResult r = run_checked(rods, Operation::Union, opt);
+    EXPECT_FALSE(r.stats.solid_path);
+    EXPECT_TRUE(close_rel(volume(r.mesh), volume(solid.mesh), 1e-9, 1e-12)) << volume(r.mesh);
+    EXPECT_TRUE(close_rel(surface_area(r.mesh), surface_area(solid.mesh), 1e-9, 1e-12)) << surface_area(r.mesh);
+    expect_same_as_first(first, r.mesh, threads);
+  }
+}
+
 /// The split rule: a split pays while (n + s)^2 < 2 n^2, s < 0.414 n.
 TEST(Piles, SplitPaysWhileFewerThanSqrt2Minus1OfThePolygonsStraddle) {
   EXPECT_TRUE(core::split_pays(1000, 0));
