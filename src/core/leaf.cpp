@@ -89,21 +89,6 @@ bool touches_plane_filtered(std::span<const std::array<double, 3>> verts, std::s
   return zero || (neg && pos);
 }
 
-/// Sides of `signs` (each -1, 0 or +1): whether some are strictly below and
-/// some strictly above, and how many are 0.
-struct SignCount {
-  bool below = false, above = false;
-  int zeros = 0;
-  explicit SignCount(const std::vector<std::int8_t>& signs) {
-    for (const std::int8_t s : signs) {
-      below |= s < 0;
-      above |= s > 0;
-      zeros += s == 0;
-    }
-  }
-  bool straddles() const { return below && above; }
-};
-
 /// False only when polygon o meets the closed polygon t in at most one
 /// point: then o cuts no piece of t, holds no stretch of an edge of t
 /// (edge_windings.hpp), and changes no winding number just beside t except
@@ -120,14 +105,10 @@ struct SignCount {
 /// and each was tried as a cut of every piece.
 bool may_share_a_stretch(const Polygon& t, const Polygon& o, const std::vector<std::int8_t>& o_signs,
                          std::vector<std::int8_t>& t_signs, std::vector<Plane>& cons) {
-  const SignCount os(o_signs);
-  if (!os.straddles()) return os.zeros >= 2;
-  const PlaneApprox approx(o.support);
-  t_signs.resize(t.vertices.size());
-  for (std::size_t v = 0; v < t.vertices.size(); ++v)
-    t_signs[v] = static_cast<std::int8_t>(classify(t.vertices[v], o.support, approx));
-  const SignCount ts(t_signs);
-  if (!ts.straddles()) return ts.zeros >= 2;
+  const Sides os = sides_of(o_signs);
+  if (!os.straddles()) return os.on >= 2;
+  const Sides ts = classify_vertices(t, o.support, t_signs);
+  if (!ts.straddles()) return ts.on >= 2;
   return chords_overlap(t, t.support, t_signs, o, o_signs, cons);
 }
 

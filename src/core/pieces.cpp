@@ -47,17 +47,34 @@ void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& o
 bool split_by_transverse(const Polygon& poly, const Plane& support, const Polygon& other,
                          const std::vector<std::int8_t>& other_signs, std::vector<std::int8_t>& signs,
                          std::vector<Plane>& cons, Polygon& neg, Polygon& pos) {
-  bool below = false, above = false;
-  signs.resize(poly.vertices.size());
-  const PlaneApprox approx(other.support);  // converted once, not per vertex (four int128 -> double each)
-  for (std::size_t v = 0; v < poly.vertices.size(); ++v) {
-    const int s = classify(poly.vertices[v], other.support, approx);
-    signs[v] = static_cast<std::int8_t>(s);
-    below |= s < 0;
-    above |= s > 0;
-  }
-  if (!(below && above) || !chords_overlap(poly, support, signs, other, other_signs, cons)) return false;
+  if (!classify_vertices(poly, other.support, signs).straddles() ||
+      !chords_overlap(poly, support, signs, other, other_signs, cons))
+    return false;
   return clip(poly, signs, other.support, neg, pos) == ClipSide::Both;
+}
+
+Sides sides_of(const std::vector<std::int8_t>& signs) {
+  Sides s;
+  for (const std::int8_t x : signs) {
+    s.below |= x < 0;
+    s.above |= x > 0;
+    s.on += x == 0;
+  }
+  return s;
+}
+
+Sides classify_vertices(const Polygon& poly, const Plane& plane, std::vector<std::int8_t>& signs) {
+  Sides sides;
+  signs.resize(poly.vertices.size());
+  const PlaneApprox approx(plane);  // converted once, not per vertex (four int128 -> double each)
+  for (std::size_t v = 0; v < poly.vertices.size(); ++v) {
+    const int s = classify(poly.vertices[v], plane, approx);
+    signs[v] = static_cast<std::int8_t>(s);
+    sides.below |= s < 0;
+    sides.above |= s > 0;
+    sides.on += s == 0;
+  }
+  return sides;
 }
 
 bool chords_overlap(const Polygon& poly, const Plane& support, const std::vector<std::int8_t>& signs,

@@ -26,6 +26,18 @@ bool coplanar_overlap(const Polygon& a, const Polygon& b);
 /// scratch (a cut piece's old buffers serve the next clip).
 void cut_by_coplanar(std::vector<Piece>& pieces, std::size_t i, const Polygon& other, Polygon& neg, Polygon& pos);
 
+/// Which sides of a plane a polygon's vertices lie on.
+struct Sides {
+  bool below = false, above = false;
+  int on = 0;  ///< vertices on the plane
+  bool straddles() const { return below && above; }
+};
+/// The sides of `signs` (each -1, 0 or +1).
+Sides sides_of(const std::vector<std::int8_t>& signs);
+/// poly's vertices against `plane`, exactly (behind classify's filter), into
+/// `signs`; the plane is converted to doubles once, not per vertex.
+Sides classify_vertices(const Polygon& poly, const Plane& plane, std::vector<std::int8_t>& signs);
+
 /// Whether the chord where `other`'s plane crosses `poly` (on `support`;
 /// `signs`: poly's vertices against other's plane, strictly on both sides)
 /// and the chord where `support` crosses `other` (`other_signs`) overlap

@@ -13,6 +13,7 @@
 //    < 18uM, every product by < 80uM^2, the determinant by < 170uM^2; the
 //    filter accepts |det| > 256uM^2.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -110,9 +111,14 @@ namespace detail {
 }
 }  // namespace detail
 
-/// orient2d_dropped with the projection's axes given: u = (drop + 1) mod 3,
-/// v = (drop + 2) mod 3 (callers that orient many triples in one plane
-/// compute them once).
+/// The coordinates (u, v) = (drop + 1, drop + 2) mod 3 that remain when axis
+/// `drop` is projected away (without the divisions of % 3).
+constexpr std::array<int, 2> projected_axes(int drop) { return {drop == 2 ? 0 : drop + 1, drop == 0 ? 2 : drop - 1}; }
+static_assert(projected_axes(0) == std::array<int, 2>{1, 2} && projected_axes(1) == std::array<int, 2>{2, 0} &&
+              projected_axes(2) == std::array<int, 2>{0, 1});
+
+/// orient2d_dropped with the projection's axes given (projected_axes:
+/// callers that orient many triples in one plane compute them once).
 inline int orient2d_uv(const Point& a, const Point& b, const Point& c, int u, int v) {
   const double au = a.f[u], av = a.f[v], bu = b.f[u], bv = b.f[v], cu = c.f[u], cv = c.f[v];
   const double det = (bu - au) * (cv - av) - (bv - av) * (cu - au);
@@ -131,7 +137,8 @@ inline int orient2d_uv(const Point& a, const Point& b, const Point& c, int u, in
 /// normal has a positive component along `drop`, +1 means counter-clockwise
 /// around that normal.
 inline int orient2d_dropped(const Point& a, const Point& b, const Point& c, int drop) {
-  return orient2d_uv(a, b, c, drop == 2 ? 0 : drop + 1, drop == 0 ? 2 : drop - 1);
+  const auto [u, v] = projected_axes(drop);
+  return orient2d_uv(a, b, c, u, v);
 }
 
 }  // namespace ember

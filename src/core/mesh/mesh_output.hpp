@@ -28,6 +28,7 @@
 #include "core/solve.hpp"
 #include "ember/boolean.hpp"
 #include "ember/core/quantize.hpp"
+#include "ember/geometry/exact_order.hpp"
 
 namespace ember::core {
 
@@ -184,6 +185,22 @@ std::vector<std::uint32_t> restore_vertices(Regions& regions, const std::vector<
 
 /// Orientation of a, b, c seen from the positive side of `plane` (+1 counter-clockwise).
 int orient_in_plane(const Point& a, const Point& b, const Point& c, const Plane& plane);
+
+/// orient_in_plane with the plane's projection (its dominant axis, and which
+/// way it faces) worked out once, for loops that orient many triples in one
+/// plane (ear clipping: tens of thousands per curved result).
+class PlaneOrientation {
+ public:
+  explicit PlaneOrientation(const Plane& plane);
+  int operator()(const Point& a, const Point& b, const Point& c) const {
+    const int o = orient2d_uv(a, b, c, u_, v_);
+    return flip_ ? -o : o;
+  }
+
+ private:
+  int u_ = 1, v_ = 2;
+  bool flip_ = false;
+};
 
 /// Step 4 for one region: appends triangles (counter-clockwise around the
 /// region's outward normal). False if the region's loops are not a polygon

@@ -227,10 +227,16 @@ GroupResult build_group(std::span<const OutputPolygon> polys, const Cycles& cycl
 
 }  // namespace
 
-int orient_in_plane(const Point& a, const Point& b, const Point& c, const Plane& plane) {
+PlaneOrientation::PlaneOrientation(const Plane& plane) {
   const int drop = dominant_axis(plane);
-  const int o = orient2d_dropped(a, b, c, drop);
-  return plane.normal(drop).negative() ? -o : o;
+  const std::array<int, 2> uv = projected_axes(drop);
+  u_ = uv[0];
+  v_ = uv[1];
+  flip_ = plane.normal(drop).negative();
+}
+
+int orient_in_plane(const Point& a, const Point& b, const Point& c, const Plane& plane) {
+  return PlaneOrientation(plane)(a, b, c);
 }
 
 void piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids, std::vector<std::uint32_t>& loop) {

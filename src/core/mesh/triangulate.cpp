@@ -18,25 +18,13 @@ namespace ember::core {
 
 namespace {
 
-/// A region's vertices and plane, with the projection orient_in_plane would
-/// pick worked out once (it is asked thousands of times per region set).
+/// A region's vertices and its plane's orientation test.
 struct Ctx {
-  Ctx(const OutputVertices& verts, const Plane& plane) : verts(verts), plane(plane) {
-    const int drop = dominant_axis(plane);
-    u = drop == 2 ? 0 : drop + 1;
-    v = drop == 0 ? 2 : drop - 1;
-    flip = plane.normal(drop).negative();
-  }
+  Ctx(const OutputVertices& verts, const Plane& plane) : verts(verts), in_plane(plane) {}
   const OutputVertices& verts;
-  const Plane& plane;
-  int u = 0, v = 0;
-  bool flip = false;
+  PlaneOrientation in_plane;
   const Point& pt(std::uint32_t i) const { return verts.exact[i]; }
-  /// orient_in_plane(pt(a), pt(b), pt(c), plane).
-  int orient(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
-    const int o = orient2d_uv(pt(a), pt(b), pt(c), u, v);
-    return flip ? -o : o;
-  }
+  int orient(std::uint32_t a, std::uint32_t b, std::uint32_t c) const { return in_plane(pt(a), pt(b), pt(c)); }
 };
 
 /// x strictly inside the angle at corner b of a loop running a -> b -> c
