@@ -43,21 +43,65 @@ std::array<double, 3> principal_direction(const std::vector<std::array<double, 3
   return v;
 }
 
-FrameBoxes::FrameBoxes(const SoupApprox& a) {
-  const std::size_t n = a.begin.empty() ? 0 : a.begin.size() - 1;
-  if (n == 0) return;
-  // Any frame is sound; the principal one makes the boxes of a pile's
-  // slivers thin across it.
-  V3 e0 = principal_direction(a.verts);
+namespace {
+
+/// A right-handed orthonormal frame whose first axis is e0 (a unit vector).
+bool frame_along(const V3& e0, std::array<V3, 3>& frame) {
   int least = 0;
   for (int k = 1; k < 3; ++k)
     if (std::fabs(e0[k]) < std::fabs(e0[least])) least = k;
   V3 axis{};
   axis[least] = 1;
   V3 e1 = cross(e0, axis);
-  if (!normalize(e1)) return;
-  const V3 e2 = cross(e0, e1);
-  const std::array<V3, 3> frame{e0, e1, e2};
+  if (!normalize(e1)) return false;
+  frame = {e0, e1, cross(e0, e1)};
+  return true;
+}
+
+/// Calls store(i, lo, hi) with polygon i's interval along u (a frame axis),
+/// measured from c and padded by `pad` (see the header for why it is sound).
+template <typename Store>
+void intervals_along(const SoupApprox& a, std::size_t n, const V3& u, const V3& c, double pad, Store&& store) {
+  for (std::size_t i = 0; i < n; ++i) {
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (const V3& p : a.of(i)) {
+      const double r = u[0] * (p[0] - c[0]) + u[1] * (p[1] - c[1]) + u[2] * (p[2] - c[2]);
+      lo = std::min(lo, r - pad);
+      hi = std::max(hi, r + pad);
+    }
+    store(i, lo, hi);
+  }
+}
+
+/// The two operands with the most polygons (most first, ties to the lower
+/// operand), or fewer where fewer are present.
+std::vector<std::uint32_t> two_largest_operands(std::span<const std::uint32_t> operand) {
+  std::vector<std::size_t> count;
+  for (const std::uint32_t o : operand) {
+    if (o >= count.size()) count.resize(o + 1, 0);
+    ++count[o];
+  }
+  std::vector<std::uint32_t> top;
+  for (int k = 0; k < 2; ++k) {
+    std::uint32_t best = 0;
+    for (std::uint32_t o = 1; o < count.size(); ++o)
+      if (count[o] > count[best]) best = o;
+    if (count.empty() || count[best] == 0) break;
+    top.push_back(best);
+    count[best] = 0;
+  }
+  return top;
+}
+
+}  // namespace
+
+FrameBoxes::FrameBoxes(const SoupApprox& a, std::span<const std::uint32_t> operand) {
+  const std::size_t n = a.begin.empty() ? 0 : a.begin.size() - 1;
+  if (n == 0) return;
+  // Any frame is sound; the principal one makes the boxes of a pile's
+  // slivers thin across it.
+  std::array<V3, 3> frame;
+  if (!frame_along(principal_direction(a.verts), frame)) return;
   V3 c{};
   double m = 0;
   for (const V3& p : a.verts)
@@ -67,20 +111,33 @@ FrameBoxes::FrameBoxes(const SoupApprox& a) {
   if (!std::isfinite(m)) return;
   const double pad = 0x1p-40 * m;
   for (int k = 0; k < 3; ++k) {
-    lo_[k].assign(n, HUGE_VAL);
-    hi_[k].assign(n, -HUGE_VAL);
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    for (const V3& p : a.of(i)) {
-      const V3 d{p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-      for (int k = 0; k < 3; ++k) {
-        const double r = frame[k][0] * d[0] + frame[k][1] * d[1] + frame[k][2] * d[2];
-        lo_[k][i] = std::min(lo_[k][i], r - pad);
-        hi_[k][i] = std::max(hi_[k][i], r + pad);
-      }
-    }
+    lo_[k].resize(n);
+    hi_[k].resize(n);
+    intervals_along(a, n, frame[k], c, pad, [&](std::size_t i, double lo, double hi) {
+      lo_[k][i] = lo;
+      hi_[k][i] = hi;
+    });
   }
   build_grid();
+  if (operand.size() != n) return;
+  const std::vector<std::uint32_t> top = two_largest_operands(operand);
+  if (top.size() < 2) return;
+  operand_boxes_.resize(n);
+  for (std::size_t f = 0; f < 2; ++f) {
+    std::vector<V3> own;
+    for (std::size_t i = 0; i < n; ++i)
+      if (operand[i] == top[f]) own.insert(own.end(), a.of(i).begin(), a.of(i).end());
+    std::array<V3, 3> of_operand;
+    if (!frame_along(principal_direction(own), of_operand)) {
+      operand_boxes_.clear();
+      return;
+    }
+    for (std::size_t axis = 1; axis < 3; ++axis)
+      intervals_along(a, n, of_operand[axis], c, pad, [&](std::size_t i, double lo, double hi) {
+        operand_boxes_[i].lo[2 * f + axis - 1] = lo;
+        operand_boxes_[i].hi[2 * f + axis - 1] = hi;
+      });
+  }
 }
 
 namespace {
@@ -189,6 +246,7 @@ bool FrameBoxes::overlapping(std::size_t i, Query& query, std::vector<std::uint3
 void FrameBoxes::scan(std::size_t i, std::vector<std::uint32_t>& out) const {
   out.clear();
   append_meeting(lo_, hi_, i, i, [](std::size_t j) { return static_cast<std::uint32_t>(j); }, out);
+  if (!operand_boxes_.empty()) std::erase_if(out, [&](std::uint32_t j) { return apart_across(i, j); });
 }
 
 }  // namespace ember::core

@@ -468,7 +468,9 @@ LeafIndex index_leaf(const Soup& soup) {
   if (size > kPileLeaf) {
     index.pile = true;
     approximate(soup, index.approx);
-    index.frame = FrameBoxes(index.approx);
+    std::vector<std::uint32_t> operand(size);
+    for (std::size_t i = 0; i < size; ++i) operand[i] = soup[i].operand;
+    index.frame = FrameBoxes(index.approx, operand);
   }
   return index;
 }

@@ -57,10 +57,12 @@ struct Built {
   SoupApprox approx;
 };
 
-Built build(std::vector<Tri> tris) {
+/// The soup of `tris`, triangle i of operand operand[i] (0 for all without).
+Built build(std::vector<Tri> tris, const std::vector<std::uint32_t>& operand = {}) {
   Built b;
   b.tris = std::move(tris);
-  for (std::uint32_t i = 0; i < b.tris.size(); ++i) b.soup.push_back(unbuilt_triangle(b.tris[i], i, 0));
+  for (std::uint32_t i = 0; i < b.tris.size(); ++i)
+    b.soup.push_back(unbuilt_triangle(b.tris[i], i, operand.empty() ? 0 : operand[i]));
   approximate(b.soup, b.approx);
   return b;
 }
@@ -199,6 +201,74 @@ TEST(FrameBoxes, CoarsenedGridReturnsExactlyTheOverlappingBoxes) {
       ASSERT_EQ(got, want) << "polygon " << i;
     }
     EXPECT_EQ(answered, b.tris.size());
+  }
+}
+
+/// Pairs (i, j), i != j, whose boxes the frame does not hold apart.
+std::size_t pairs_not_apart(const FrameBoxes& frame, std::size_t n) {
+  std::size_t pairs = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) pairs += i != j && !frame.apart(i, j);
+  return pairs;
+}
+
+TEST(FrameBoxes, OperandFramesSeparateTwoBundlesAtASmallAngle) {
+  // Two operands' needle bundles through the same tube, 0.3 degrees apart
+  // (the sliver pile's twin rods): in the leaf's frame, between the two,
+  // each needle drifts across ~2,300 units of the 3,100-unit section. Plus
+  // triangles of operand 1 that touch operand 0's needles without sharing a
+  // corner (a corner on a needle's long edge) or at its tip.
+  const IntPoint dir{400000, -800000, 80000}, tilt{0, 0, 4600};
+  for (const std::int64_t origin : {std::int64_t{1000}, kCoordLimit - 2000000}) {
+    std::vector<Tri> tris = needle_bundle(origin, dir);
+    const std::size_t first = tris.size();
+    for (const Tri& t : needle_bundle(origin, IntPoint{dir.x + tilt.x, dir.y + tilt.y, dir.z + tilt.z})) tris.push_back(t);
+    std::vector<std::uint32_t> operand(tris.size(), 1);
+    std::fill(operand.begin(), operand.begin() + static_cast<std::ptrdiff_t>(first), 0);
+    std::vector<std::array<std::size_t, 2>> contacts;
+    std::mt19937_64 rng(11);
+    for (int k = 0; k < 300; ++k) {
+      const std::size_t s = rng() % first;
+      const Tri& t = tris[s];
+      const IntPoint on_edge{(t[0].x + t[2].x) / 2, (t[0].y + t[2].y) / 2, (t[0].z + t[2].z) / 2};
+      const IntPoint m = k % 2 ? on_edge : t[2];  // the needle's edge (exactly on it: even offsets) or its tip
+      contacts.push_back({s, tris.size()});
+      tris.push_back({m, IntPoint{m.x + 700, m.y + 40, m.z + 300}, IntPoint{m.x - 90, m.y + 800, m.z - 500}});
+      operand.push_back(1);
+    }
+    // The edge midpoints are grid points on the edge: dir is even.
+    static_assert(400000 % 2 == 0 && 800000 % 2 == 0 && 80000 % 2 == 0);
+    const Built b = build(tris, operand);
+    const FrameBoxes leaf_only(b.approx), with_operands(b.approx, operand);
+    EXPECT_FALSE(leaf_only.has_operand_frames());
+    ASSERT_TRUE(with_operands.has_operand_frames());
+    for (const auto& [i, j] : contacts) {
+      EXPECT_FALSE(with_operands.apart(i, j)) << "triangle " << j << " touches needle " << i;
+      EXPECT_FALSE(with_operands.apart(j, i));
+    }
+    // The operands' frames hold about half of the leaf frame's pairs apart
+    // (208,560 -> 103,832: what is left are mostly needles of the two
+    // operands that really cross in the section), and never bring a pair the
+    // leaf frame holds apart together again (below).
+    const std::size_t leaf_pairs = pairs_not_apart(leaf_only, tris.size());
+    const std::size_t both_pairs = pairs_not_apart(with_operands, tris.size());
+    EXPECT_LT(both_pairs, leaf_pairs * 6 / 10) << leaf_pairs << " pairs in the leaf's frame";
+    // The grid's and the scan's answers are exactly the pairs not apart.
+    FrameBoxes::Query query;
+    std::vector<std::uint32_t> got;
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+      std::vector<std::uint32_t> want;
+      for (std::uint32_t j = 0; j < tris.size(); ++j)
+        if (j != i && !with_operands.apart(i, j)) {
+          want.push_back(j);
+          EXPECT_FALSE(leaf_only.apart(i, j));
+        }
+      with_operands.scan(i, got);
+      ASSERT_EQ(got, want) << "polygon " << i;
+      if (with_operands.overlapping(i, query, got)) {
+        ASSERT_EQ(got, want) << "polygon " << i;
+      }
+    }
   }
 }
 
