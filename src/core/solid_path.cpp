@@ -356,8 +356,13 @@ class SolidSolver {
       for (std::size_t s = 0; s < trees_.tree[o].size(); s += kChunk) chunks.emplace_back(o, static_cast<std::uint32_t>(s));
     chunk_out.assign(chunks.size(), {});
     std::atomic<bool> failed{false};
+    // The built polygons outlive a range of chunks: a pile's triangles share
+    // their partners from one operand's chunk to the next (the 200-cube
+    // pile's 200 one-chunk operands built each of ~2,000 partners once per
+    // range of chunks). Their content depends only on the id.
+    tbb::enumerable_thread_specific<PolygonCache> caches([&] { return PolygonCache(grid_); });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
-      ChunkScratch cs(grid_, operands_);
+      ChunkScratch cs(caches.local(), operands_);
       for (std::size_t c = r.begin(); c != r.end() && !failed.load() && !stop_.load(); ++c)
         if (!solve_chunk(chunks[c].first, chunks[c].second, cs, chunk_out[c], failed)) failed = true;
     });
@@ -414,8 +419,8 @@ class SolidSolver {
 
   /// Per worker: what a chunk's triangles reuse.
   struct ChunkScratch {
-    ChunkScratch(const GridTriangles& grid, std::size_t operands) : cache(grid), handover(operands) {}
-    PolygonCache cache;
+    ChunkScratch(PolygonCache& cache, std::size_t operands) : cache(cache), handover(operands) {}
+    PolygonCache& cache;  ///< the thread's: shared by its ranges of chunks
     CutScratch cut;
     TraceScratch trace;
     SolidHandover handover;
