@@ -25,8 +25,8 @@
 // operands' frames filter the leaf frame's answers (in the sliver pile's
 // largest leaves, 590-690 candidates per polygon become 240-340).
 #include <array>
-#include <span>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/soup.hpp"

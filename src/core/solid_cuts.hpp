@@ -16,8 +16,8 @@ namespace ember::core {
 
 /// Built polygons of the triangles near the ones being processed, by id:
 /// a touched triangle's partners are mostly the previous one's (triangles go
-/// in Morton order), so each is built about once per chunk. References stay
-/// valid until reset().
+/// in Morton order), so each is built about once per thread while the cache
+/// stays under kKeep. References stay valid until reset_if_full() empties it.
 class PolygonCache {
  public:
   /// Built triangles kept whatever the next triangle needs: about 2.5 MB
