@@ -45,7 +45,7 @@ struct LeafScratch {
   const SoupApprox* approx = nullptr;
   const FrameBoxes* frame = nullptr;
   FrameBoxes::Query frame_query;
-  std::vector<std::uint32_t> candidates;  ///< the frame grid's answer for t
+  FrameBoxes::Candidates candidates;  ///< the frame boxes' answer for t
 };
 
 /// touches_plane(poly, plane, approx, signs) for a polygon whose vertex
@@ -195,13 +195,14 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
     if (back) mark(sc.free_back, sc.n_back, o.operand);
   };
   // In a pile leaf the frame grid names the few polygons that can touch t, or
-  // for a polygon wide across the grid a scan of all frame boxes does (either
-  // in ascending order, as the full scan would visit them). The others'
+  // a scan of all frame boxes does (for a polygon wide across the grid, or in
+  // a leaf whose grid is coarse: FrameBoxes::candidates), either in ascending
+  // order, as the full scan would visit them. The others'
   // frame boxes are apart from t's: they cannot touch t, so they change
   // nothing just beside t and cut nothing, and leaving them out only narrows
   // the free operands to the exact ones.
   if (sc.frame) {
-    if (!sc.frame->overlapping(t_index, sc.frame_query, sc.candidates)) sc.frame->scan(t_index, sc.candidates);
+    sc.frame->candidates(t_index, sc.frame_query, sc.candidates);
     for (const std::uint32_t i : sc.candidates) consider(i);
     return;
   }

@@ -67,6 +67,28 @@ Built build(std::vector<Tri> tris, const std::vector<std::uint32_t>& operand = {
   return b;
 }
 
+using Ids = FrameBoxes::Candidates;
+
+/// Every way of scanning answers `want` for polygon i: the scan that runs
+/// here, its portable and its four-lane versions, and candidates() (the
+/// scan or the grid, whichever `frame` takes for i).
+void expect_scans_answer(const FrameBoxes& frame, std::size_t i, const Ids& want) {
+  FrameBoxes::Query query;
+  Ids got;
+  frame.scan(i, got);
+  EXPECT_EQ(got, want) << "scan, polygon " << i;
+  frame.scan_portable(i, got);
+  EXPECT_EQ(got, want) << "portable scan, polygon " << i;
+#if EMBER_WIDE_LANES
+  if (cpu_has_avx2()) {
+    frame.scan_avx2(i, got);
+    EXPECT_EQ(got, want) << "four-lane scan, polygon " << i;
+  }
+#endif
+  frame.candidates(i, query, got);
+  EXPECT_EQ(got, want) << "candidates, polygon " << i;
+}
+
 bool share_corner(const Tri& a, const Tri& b) {
   for (const IntPoint& p : a)
     for (const IntPoint& q : b)
@@ -101,12 +123,12 @@ TEST(FrameBoxes, GridReturnsExactlyTheOverlappingBoxes) {
   // Two callers' queries interleaved, as threads share one pile leaf's frame:
   // each query's memory of what it found is its own.
   std::array<FrameBoxes::Query, 2> queries;
-  std::vector<std::uint32_t> got;
+  Ids got;
   std::size_t answered = 0, total = 0;
   for (std::size_t i = 0; i < b.tris.size(); ++i) {
     if (!frame.overlapping(i, queries[(i / 3) % 2], got)) continue;
     ++answered;
-    std::vector<std::uint32_t> want;
+    Ids want;
     for (std::uint32_t j = 0; j < b.tris.size(); ++j)
       if (j != i && !frame.apart(i, j)) want.push_back(j);
     EXPECT_EQ(got, want) << "polygon " << i;
@@ -154,14 +176,16 @@ TEST(FrameBoxes, ScanReturnsExactlyTheOverlappingBoxes) {
     EXPECT_EQ(frame.grid_cells()[0], 32);
     EXPECT_EQ(frame.grid_cells()[1], 32);
     FrameBoxes::Query query;
-    std::vector<std::uint32_t> got, grid;
+    Ids got, grid;
     std::size_t declined = 0, answered_pairs = 0, wide_meets_needle = 0;
+    // A fine grid: candidates() asks it (and scans what it declines).
+    EXPECT_FALSE(frame.scans_first());
     for (std::size_t i = 0; i < b.tris.size(); ++i) {
-      frame.scan(i, got);
-      std::vector<std::uint32_t> want;
+      Ids want;
       for (std::uint32_t j = 0; j < b.tris.size(); ++j)
         if (j != i && !frame.apart(i, j)) want.push_back(j);
-      ASSERT_EQ(got, want) << "polygon " << i;
+      expect_scans_answer(frame, i, want);
+      frame.scan(i, got);
       if (i >= needles) wide_meets_needle += std::count_if(got.begin(), got.end(), [&](std::uint32_t j) { return j < needles; });
       if (frame.overlapping(i, query, grid)) {
         EXPECT_EQ(grid, got) << "polygon " << i;
@@ -184,23 +208,31 @@ TEST(FrameBoxes, CoarsenedGridReturnsExactlyTheOverlappingBoxes) {
   for (const std::int64_t origin : {std::int64_t{1000}, kCoordLimit - 2000000}) {
     // Broad needles: each covers about six lattice columns each way, so a
     // grid of one column per cell would mark each member ~40 times per query.
-    const Built b = build(needle_bundle(origin, dir, {600, 1, 600}));
-    const FrameBoxes frame(b.approx);
-    // Coarsened from 32 cells per axis until a polygon covers about 4.
-    EXPECT_LE(frame.grid_cells()[0], 8);
-    EXPECT_LE(frame.grid_cells()[1], 8);
-    FrameBoxes::Query query;
-    std::vector<std::uint32_t> got;
-    std::size_t answered = 0;
-    for (std::size_t i = 0; i < b.tris.size(); ++i) {
-      if (!frame.overlapping(i, query, got)) continue;  // none is wide on a coarse grid
-      ++answered;
-      std::vector<std::uint32_t> want;
-      for (std::uint32_t j = 0; j < b.tris.size(); ++j)
-        if (j != i && !frame.apart(i, j)) want.push_back(j);
-      ASSERT_EQ(got, want) << "polygon " << i;
+    // The whole bundle and bundles short of one to three needles: the
+    // four-lane scan tests the last group of fewer than four one by one.
+    const std::vector<Tri> bundle = needle_bundle(origin, dir, {600, 1, 600});
+    for (std::size_t n = bundle.size(); n + 4 > bundle.size(); --n) {
+      const Built b = build({bundle.begin(), bundle.begin() + static_cast<std::ptrdiff_t>(n)});
+      const FrameBoxes frame(b.approx);
+      // Coarsened from 32 cells per axis until a polygon covers about 4:
+      // candidates() scans where four boxes go in one compare.
+      EXPECT_LE(frame.grid_cells()[0], 8);
+      EXPECT_LE(frame.grid_cells()[1], 8);
+      EXPECT_EQ(frame.scans_first(), cpu_has_avx2());
+      FrameBoxes::Query query;
+      Ids got;
+      std::size_t answered = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        Ids want;
+        for (std::uint32_t j = 0; j < n; ++j)
+          if (j != i && !frame.apart(i, j)) want.push_back(j);
+        expect_scans_answer(frame, i, want);
+        if (!frame.overlapping(i, query, got)) continue;  // none is wide on a coarse grid
+        ++answered;
+        ASSERT_EQ(got, want) << "polygon " << i;
+      }
+      EXPECT_EQ(answered, n);
     }
-    EXPECT_EQ(answered, b.tris.size());
   }
 }
 
@@ -227,7 +259,9 @@ TEST(FrameBoxes, OperandFramesSeparateTwoBundlesAtASmallAngle) {
     std::fill(operand.begin(), operand.begin() + static_cast<std::ptrdiff_t>(first), 0);
     std::vector<std::array<std::size_t, 2>> contacts;
     std::mt19937_64 rng(11);
-    for (int k = 0; k < 300; ++k) {
+    // 303 of them: 2,351 polygons, not a multiple of four (the four-lane
+    // scan's last group).
+    for (int k = 0; k < 303; ++k) {
       const std::size_t s = rng() % first;
       const Tri& t = tris[s];
       const IntPoint on_edge{(t[0].x + t[2].x) / 2, (t[0].y + t[2].y) / 2, (t[0].z + t[2].z) / 2};
@@ -247,7 +281,7 @@ TEST(FrameBoxes, OperandFramesSeparateTwoBundlesAtASmallAngle) {
       EXPECT_FALSE(with_operands.apart(j, i));
     }
     // The operands' frames hold about half of the leaf frame's pairs apart
-    // (208,560 -> 103,832: what is left are mostly needles of the two
+    // (209,964 -> 104,636: what is left are mostly needles of the two
     // operands that really cross in the section), and never bring a pair the
     // leaf frame holds apart together again (below).
     const std::size_t leaf_pairs = pairs_not_apart(leaf_only, tris.size());
@@ -255,16 +289,15 @@ TEST(FrameBoxes, OperandFramesSeparateTwoBundlesAtASmallAngle) {
     EXPECT_LT(both_pairs, leaf_pairs * 6 / 10) << leaf_pairs << " pairs in the leaf's frame";
     // The grid's and the scan's answers are exactly the pairs not apart.
     FrameBoxes::Query query;
-    std::vector<std::uint32_t> got;
+    Ids got;
     for (std::size_t i = 0; i < tris.size(); ++i) {
-      std::vector<std::uint32_t> want;
+      Ids want;
       for (std::uint32_t j = 0; j < tris.size(); ++j)
         if (j != i && !with_operands.apart(i, j)) {
           want.push_back(j);
           EXPECT_FALSE(leaf_only.apart(i, j));
         }
-      with_operands.scan(i, got);
-      ASSERT_EQ(got, want) << "polygon " << i;
+      expect_scans_answer(with_operands, i, want);
       if (with_operands.overlapping(i, query, got)) {
         ASSERT_EQ(got, want) << "polygon " << i;
       }
