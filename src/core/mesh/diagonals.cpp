@@ -31,8 +31,9 @@ std::vector<std::uint32_t> inside_segment(std::uint32_t x, std::uint32_t y, cons
   while (axis < 2 && compare_coord(px, py, axis) == 0) ++axis;
   const int toward_y = compare_coord(py, px, axis);
   std::vector<std::uint32_t> found;
+  const SegmentFilter near(verts.rounded[x], verts.rounded[y]);
   index.for_each_near_segment(verts.rounded[x], verts.rounded[y], [&](std::uint32_t v) {
-    if (v == x || v == y || !used[v] || clearly_off_segment(verts.rounded[x], verts.rounded[y], verts.rounded[v])) return;
+    if (v == x || v == y || !used[v] || near.clearly_off(verts.rounded[v])) return;
     const Point& pv = verts.exact[v];
     if (classify(pv, plane) != 0 || orient_in_plane(px, py, pv, plane) != 0) return;
     // On the line: strictly between x and y along an axis in which they differ.

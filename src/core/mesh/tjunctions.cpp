@@ -64,8 +64,9 @@ void edge_interior_vertices(const Plane& support, std::uint32_t a, std::uint32_t
   // points differ: found on the first collinear candidate (most edges have none).
   int axis = -1, dir = 0;
   found.clear();
+  const SegmentFilter near(verts.rounded[a], verts.rounded[b]);
   index.for_each_near_segment(verts.rounded[a], verts.rounded[b], [&](std::uint32_t v) {
-    if (v == a || v == b || clearly_off_segment(verts.rounded[a], verts.rounded[b], verts.rounded[v])) return;
+    if (v == a || v == b || near.clearly_off(verts.rounded[v])) return;
     const Point& x = verts.exact[v];
     if (classify(x, support) != 0 || orient2d_dropped(pa, pb, x, dominant_axis(support)) != 0) return;
     if (axis < 0) {

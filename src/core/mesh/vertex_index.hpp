@@ -30,16 +30,40 @@ namespace ember::core {
 /// adds less than 2^-48 D M. A component above 2^-40 D M therefore rules the
 /// point out, with a margin of 2^7. Outside 2^-400 <= D, M <= 2^400 (where
 /// subnormals or overflow could spoil the bounds) it rules nothing out.
+///
+/// SegmentFilter(ra, rb).clearly_off(rv) computes what depends on ra and rb
+/// alone once for many candidates rv (the T-junction search tests ~200 per
+/// edge in the sliver pile; recomputing it for each was half of the filter's
+/// cost); clearly_off_segment(ra, rb, rv) is the one-off form.
+class SegmentFilter {
+ public:
+  SegmentFilter(const Vec3d& ra, const Vec3d& rb)
+      : ra_(ra),
+        m_(std::max({std::fabs(ra.x), std::fabs(ra.y), std::fabs(ra.z), std::fabs(rb.x), std::fabs(rb.y), std::fabs(rb.z)})),
+        dx_(rb.x - ra.x),
+        dy_(rb.y - ra.y),
+        dz_(rb.z - ra.z) {
+    const double D = std::max({std::fabs(dx_), std::fabs(dy_), std::fabs(dz_)});
+    usable_ = D >= 0x1p-400;
+    scaled_d_ = 0x1p-40 * D;
+  }
+  bool clearly_off(const Vec3d& rv) const {
+    const double M = std::max({m_, std::fabs(rv.x), std::fabs(rv.y), std::fabs(rv.z)});
+    if (!usable_ || !(M <= 0x1p400)) return false;
+    const double wx = rv.x - ra_.x, wy = rv.y - ra_.y, wz = rv.z - ra_.z;
+    const double bound = scaled_d_ * M;
+    return std::fabs(dy_ * wz - dz_ * wy) > bound || std::fabs(dz_ * wx - dx_ * wz) > bound ||
+           std::fabs(dx_ * wy - dy_ * wx) > bound;
+  }
+
+ private:
+  Vec3d ra_;
+  double m_, dx_, dy_, dz_, scaled_d_ = 0;
+  bool usable_ = false;
+};
+
 inline bool clearly_off_segment(const Vec3d& ra, const Vec3d& rb, const Vec3d& rv) {
-  const double M = std::max({std::fabs(ra.x), std::fabs(ra.y), std::fabs(ra.z), std::fabs(rb.x), std::fabs(rb.y),
-                             std::fabs(rb.z), std::fabs(rv.x), std::fabs(rv.y), std::fabs(rv.z)});
-  const double dx = rb.x - ra.x, dy = rb.y - ra.y, dz = rb.z - ra.z;
-  const double D = std::max({std::fabs(dx), std::fabs(dy), std::fabs(dz)});
-  if (!(D >= 0x1p-400) || !(M <= 0x1p400)) return false;
-  const double wx = rv.x - ra.x, wy = rv.y - ra.y, wz = rv.z - ra.z;
-  const double bound = 0x1p-40 * D * M;
-  return std::fabs(dy * wz - dz * wy) > bound || std::fabs(dz * wx - dx * wz) > bound ||
-         std::fabs(dx * wy - dy * wx) > bound;
+  return SegmentFilter(ra, rb).clearly_off(rv);
 }
 
 /// A conservative box test for the segment searches below: false only if no
