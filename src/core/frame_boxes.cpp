@@ -73,6 +73,13 @@ void intervals_along(const SoupApprox& a, std::size_t n, const V3& u, const V3& 
   }
 }
 
+/// Widens [l, h] to hold [lo, hi]. A NaN bound sticks: apart() holds no
+/// box with a NaN bound apart from any other, nor may a block that holds one.
+void widen(double& l, double& h, double lo, double hi) {
+  if (!std::isnan(l)) l = lo < l || std::isnan(lo) ? lo : l;
+  if (!std::isnan(h)) h = hi > h || std::isnan(hi) ? hi : h;
+}
+
 /// The two operands with the most polygons (most first, ties to the lower
 /// operand), or fewer where fewer are present.
 std::vector<std::uint32_t> two_largest_operands(std::span<const std::uint32_t> operand) {
@@ -119,6 +126,7 @@ FrameBoxes::FrameBoxes(const SoupApprox& a, std::span<const std::uint32_t> opera
     });
   }
   build_grid();
+  build_blocks();
   if (operand.size() != n) return;
   const std::vector<std::uint32_t> top = two_largest_operands(operand);
   if (top.size() < 2) return;
@@ -138,6 +146,14 @@ FrameBoxes::FrameBoxes(const SoupApprox& a, std::span<const std::uint32_t> opera
         operand_boxes_[i].hi[2 * f + axis - 1] = hi;
       });
   }
+  OperandBoxes empty;
+  empty.lo.fill(HUGE_VAL);
+  empty.hi.fill(-HUGE_VAL);
+  block_operand_boxes_.assign((n + kBlock - 1) / kBlock, empty);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 0; k < 4; ++k)
+      widen(block_operand_boxes_[i / kBlock].lo[k], block_operand_boxes_[i / kBlock].hi[k], operand_boxes_[i].lo[k],
+            operand_boxes_[i].hi[k]);
 }
 
 namespace {
@@ -152,10 +168,20 @@ constexpr std::size_t kMeanSpan = 4;
 /// per axis, where four boxes go in one compare (AVX2): in the sliver pile
 /// (all its grids 4 x 4 or 8 x 8) a query's marks and readback visited ~40%
 /// of the leaf one polygon at a time. Callgrind, 1 thread: 30.47 G with the
-/// grid, 28.08 G scanning 4 x 4 leaves, 27.80 G scanning 8 x 8 ones too.
-/// Without AVX2 the scalar scan was slower than the grid (35.48 G).
+/// grid, 28.08 G scanning 4 x 4 leaves, 27.80 G scanning 8 x 8 ones too
+/// (25.09 G once the scan skipped blocks: FrameBoxes::kBlock). Without AVX2
+/// the scalar scan was slower than the grid (35.48 G).
 constexpr int kScanCells = 8;
 }  // namespace
+
+void FrameBoxes::build_blocks() {
+  const std::size_t n = lo_[0].size(), blocks = (n + kBlock - 1) / kBlock;
+  for (int k = 0; k < 3; ++k) {
+    block_lo_[k].assign(blocks, HUGE_VAL);
+    block_hi_[k].assign(blocks, -HUGE_VAL);
+    for (std::size_t i = 0; i < n; ++i) widen(block_lo_[k][i / kBlock], block_hi_[k][i / kBlock], lo_[k][i], hi_[k][i]);
+  }
+}
 
 std::array<int, 2> FrameBoxes::cell_range(std::size_t i, int axis) const {
   const std::vector<double>& cuts = cuts_[axis];
@@ -278,7 +304,10 @@ EMBER_TARGET_AVX2 inline __m256d meet4(const double* a, const double* b, __m256d
 }  // namespace
 
 EMBER_TARGET_AVX2 inline bool FrameBoxes::apart_across_avx2(std::size_t i, std::size_t j) const {
-  const OperandBoxes &a = operand_boxes_[i], &b = operand_boxes_[j];
+  return apart_avx2(operand_boxes_[i], operand_boxes_[j]);
+}
+
+EMBER_TARGET_AVX2 inline bool FrameBoxes::apart_avx2(const OperandBoxes& a, const OperandBoxes& b) {
   const __m256d b_above = _mm256_cmp_pd(_mm256_load_pd(b.lo.data()), _mm256_load_pd(a.hi.data()), _CMP_GT_OQ);
   const __m256d a_above = _mm256_cmp_pd(_mm256_load_pd(a.lo.data()), _mm256_load_pd(b.hi.data()), _CMP_GT_OQ);
   return _mm256_movemask_pd(_mm256_or_pd(b_above, a_above)) != 0;
@@ -292,22 +321,31 @@ EMBER_TARGET_AVX2 void FrameBoxes::scan_avx2(std::size_t i, Candidates& out) con
   const bool across = !operand_boxes_.empty();
   const __m256d l0 = _mm256_set1_pd(lo_[0][i]), l1 = _mm256_set1_pd(lo_[1][i]), l2 = _mm256_set1_pd(lo_[2][i]);
   const __m256d h0 = _mm256_set1_pd(hi_[0][i]), h1 = _mm256_set1_pd(hi_[1][i]), h2 = _mm256_set1_pd(hi_[2][i]);
-  std::size_t k = 0;
-  for (; k < n; k += 4) {
-    // The last group of fewer than four is tested one by one.
-    unsigned bits = 0;
-    if (k + 4 <= n) {
-      const __m256d m01 = _mm256_and_pd(meet4(&lo_[0][k], &hi_[0][k], l0, h0), meet4(&lo_[1][k], &hi_[1][k], l1, h1));
-      bits = static_cast<unsigned>(_mm256_movemask_pd(_mm256_and_pd(m01, meet4(&lo_[2][k], &hi_[2][k], l2, h2))));
-    } else {
-      for (std::size_t r = k; r < n; ++r) bits |= static_cast<unsigned>(!apart_in_leaf_frame(i, r)) << (r - k);
-    }
-    // Each box the leaf frame keeps is written, then kept unless it is i's
-    // or its operand-frame boxes lie apart from i's.
-    for (; bits != 0; bits &= bits - 1) {
-      const std::size_t j = k + static_cast<std::size_t>(std::countr_zero(bits));
-      dst[count] = static_cast<std::uint32_t>(j);
-      count += (j != i) & !(across && apart_across_avx2(i, j));
+  for (std::size_t block = 0; block * kBlock < n; ++block) {
+    // Blocks of consecutive polygons (neighbours in the mesh, mostly) whose
+    // joint box lies apart from i's, in the leaf's frame or an operand's,
+    // are skipped whole.
+    if (block_lo_[0][block] > hi_[0][i] || lo_[0][i] > block_hi_[0][block] || block_lo_[1][block] > hi_[1][i] ||
+        lo_[1][i] > block_hi_[1][block] || block_lo_[2][block] > hi_[2][i] || lo_[2][i] > block_hi_[2][block] ||
+        (across && apart_avx2(operand_boxes_[i], block_operand_boxes_[block])))
+      continue;
+    const std::size_t end = std::min(n, (block + 1) * kBlock);
+    for (std::size_t k = block * kBlock; k < end; k += 4) {
+      // The last group of fewer than four is tested one by one.
+      unsigned bits = 0;
+      if (k + 4 <= end) {
+        const __m256d m01 = _mm256_and_pd(meet4(&lo_[0][k], &hi_[0][k], l0, h0), meet4(&lo_[1][k], &hi_[1][k], l1, h1));
+        bits = static_cast<unsigned>(_mm256_movemask_pd(_mm256_and_pd(m01, meet4(&lo_[2][k], &hi_[2][k], l2, h2))));
+      } else {
+        for (std::size_t r = k; r < end; ++r) bits |= static_cast<unsigned>(!apart_in_leaf_frame(i, r)) << (r - k);
+      }
+      // Each box the leaf frame keeps is written, then kept unless it is i's
+      // or its operand-frame boxes lie apart from i's.
+      for (; bits != 0; bits &= bits - 1) {
+        const std::size_t j = k + static_cast<std::size_t>(std::countr_zero(bits));
+        dst[count] = static_cast<std::uint32_t>(j);
+        count += (j != i) & !(across && apart_across_avx2(i, j));
+      }
     }
   }
   out.resize(count);

@@ -73,7 +73,8 @@ class FrameBoxes {
   /// The same answer as scan(), one element at a time (any processor).
   void scan_portable(std::size_t i, Candidates& out) const;
 #if EMBER_WIDE_LANES
-  /// The same answer as scan(), four boxes per compare: only where cpu_has_avx2().
+  /// The same answer as scan(), four boxes per compare, skipping blocks of
+  /// polygons apart from i: only where cpu_has_avx2().
   EMBER_TARGET_AVX2 void scan_avx2(std::size_t i, Candidates& out) const;
 #endif
   /// The answer of overlapping() or scan(), whichever is cheaper for i here:
@@ -118,8 +119,10 @@ class FrameBoxes {
   }
 #if EMBER_WIDE_LANES
   EMBER_TARGET_AVX2 bool apart_across_avx2(std::size_t i, std::size_t j) const;
+  EMBER_TARGET_AVX2 static bool apart_avx2(const OperandBoxes& a, const OperandBoxes& b);
 #endif
   void build_grid();
+  void build_blocks();
   std::array<int, 2> cell_range(std::size_t i, int axis) const;
   using AxisArrays = std::array<std::vector<double>, 3>;
   /// Appends id(k) for every box k of (lo, hi) but `skip` that meets polygon
@@ -160,6 +163,16 @@ class FrameBoxes {
   std::vector<std::uint32_t> cell_begin_, members_, wide_;
   std::vector<OperandBoxes> operand_boxes_;  ///< empty for a leaf of one operand
   bool scan_first_ = false;                  ///< see candidates()
+  /// The joint box of each block of kBlock consecutive polygons, per axis:
+  /// scan_avx2 skips blocks apart from the query's box. Consecutive polygons
+  /// are mostly neighbours in their mesh: in the sliver pile skipping blocks
+  /// of 8 / 16 / 32 / 64 polygons took the whole run from 26.73 G
+  /// instructions to 25.91 / 25.53 / 25.39 / 25.38 G (leaf frame only), 25.09 G
+  /// with 32 and the operands' frames.
+  static constexpr std::size_t kBlock = 32;
+  static_assert(kBlock % 4 == 0, "scan_avx2 tests whole groups of four within a block");
+  AxisArrays block_lo_, block_hi_;
+  std::vector<OperandBoxes> block_operand_boxes_;  ///< per block, where operand_boxes_ is not empty
 };
 
 /// The unit vector along which the points spread most (power iteration on

@@ -303,7 +303,10 @@ class VertexIndex {
     std::uint32_t begin = 0, end = 0, first_child = 0;
   };
   static constexpr std::uint32_t kTreeMembers = 64;  ///< cells with more members get a tree
-  static constexpr std::uint32_t kTreeLeaf = 8;      ///< members per leaf, at most
+  /// Members per leaf, at most: each one a leaf holds is box-tested and
+  /// filtered. The sliver pile's whole run at 8 / 4 / 2: 26.99 / 26.73 /
+  /// 26.62 G instructions (callgrind, 1 thread).
+  static constexpr std::uint32_t kTreeLeaf = 4;
   static constexpr std::uint32_t kNoTree = UINT32_MAX;
 
   /// Builds the tree of members [begin, end) (reordering them) and returns its root.
