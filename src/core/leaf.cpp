@@ -56,7 +56,10 @@ struct LeafScratch {
 /// the filter puts every vertex strictly on one side (most polygons a pile
 /// leaf's frame grid offers). Filtering first and then calling
 /// touches_plane, which filtered again, was 12% of the sliver pile's solve.
-bool touches_plane_filtered(std::span<const std::array<double, 3>> verts, std::span<const std::uint8_t> grid,
+/// Inlined into gather's two calls: ~24M calls in the sliver pile, whose
+/// prologue and epilogue were a fifth of the filter's cost (25.05 -> 24.78 G
+/// instructions for the whole run).
+[[gnu::always_inline]] inline bool touches_plane_filtered(std::span<const std::array<double, 3>> verts, std::span<const std::uint8_t> grid,
                             const SoupPolygon& o, const Plane& plane, const LeafPlaneFilter& filter,
                             std::vector<std::int8_t>& signs) {
   constexpr int kUnsure = LeafPlaneFilter::kUnsure;
