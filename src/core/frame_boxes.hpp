@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "core/fill_vector.hpp"
+#include "core/principal_frame.hpp"
 #include "core/soup.hpp"
 #include "core/wide_lanes.hpp"
 
@@ -174,9 +175,5 @@ class FrameBoxes {
   AxisArrays block_lo_, block_hi_;
   std::vector<OperandBoxes> block_operand_boxes_;  ///< per block, where operand_boxes_ is not empty
 };
-
-/// The unit vector along which the points spread most (power iteration on
-/// their covariance); the x axis if they do not spread.
-std::array<double, 3> principal_direction(const std::vector<std::array<double, 3>>& points);
 
 }  // namespace ember::core

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/principal_frame.hpp"
 #include "core/sort_pairs.hpp"
 #include "ember/mesh.hpp"
 
@@ -82,11 +83,13 @@ inline bool clearly_off_segment(const Vec3d& ra, const Vec3d& rb, const Vec3d& r
 /// which contains t. Outside 2^-400 <= M <= 2^400 it rules nothing out.
 class SegmentTube {
  public:
-  SegmentTube(const Vec3d& ra, const Vec3d& rb) {
+  /// With `pad` (at least 2^-40 M): the box grown by pad instead, for
+  /// positions within pad - 2^-48 M of the segment (VertexIndex's frame).
+  SegmentTube(const Vec3d& ra, const Vec3d& rb, double pad = 0) {
     const double m = std::max({std::fabs(ra.x), std::fabs(ra.y), std::fabs(ra.z), std::fabs(rb.x), std::fabs(rb.y),
                                std::fabs(rb.z)});
     usable_ = m >= 0x1p-400 && m <= 0x1p400;
-    pad_ = 0x1p-40 * m;
+    pad_ = std::max(0x1p-40 * m, pad);
     start_ = {ra.x, ra.y, ra.z};
     const std::array<double, 3> d{rb.x - ra.x, rb.y - ra.y, rb.z - ra.z};
     for (int a = 0; a < 3; ++a) inverse_[a] = d[a] == 0 ? 0 : 1 / d[a];
@@ -134,6 +137,29 @@ class SegmentTube {
 /// more than kTreeMembers members therefore keeps them in a small kd-tree,
 /// and a segment query descends only into the nodes whose boxes the segment
 /// passes (SegmentTube), testing the classes member by member there.
+///
+/// Cells and trees are laid out in the principal frame of the members'
+/// positions (principal_frame.hpp), not along the axes: a pile of diagonal
+/// slivers (the sliver pile's rods, 9,000-17,000 units long and 2-500 wide)
+/// puts the whole section of a rod into the axis-aligned box of every stretch
+/// of a strip's edge, and the T-junction search filtered ~2,300 vertices per
+/// long edge (11.4M in all, of which 1,629 passed the filter); in the frame
+/// the boxes of such a stretch are thin across the rod.
+///
+/// Why the frame is sound: the frame R (orthonormal rows, |R_kj| <= 1) is
+/// taken as an exact linear map. Let M be the larger |coordinate| of the
+/// query's rounded end points ra and rb. A point p exactly on the segment
+/// a-b lies in the box of a and b and rounds to rv with |rv - p| <= 2^-53 M
+/// per coordinate, so R rv lies within 3 * 2^-53 M of R p, and R p within
+/// 3 * 2^-53 M of the exact segment from R ra to R rb (a convex combination
+/// of the end points' rounding errors). Each computed frame coordinate (three
+/// products and two sums of terms below M) errs by less than 2^-50 * 3 M.
+/// So a member on the segment lies within 2^-46 M of the segment between the
+/// computed frame positions of ra and rb, and the query pads everything by
+/// 2^-40 M: the end points' box, each piece's box and the crowded cells'
+/// tube. (At most 2^-1000 more, so that subnormal roundings are covered;
+/// members beyond 2^1000 keep the axes, where R is the identity and every
+/// frame coordinate exact.)
 class VertexIndex {
  public:
   enum class Part { kAll, kLow, kHigh };
@@ -143,7 +169,8 @@ class VertexIndex {
       : ids_(std::move(members)) {
     if (ids_.empty()) return;
     pos_.resize(ids_.size());
-    for (std::size_t i = 0; i < ids_.size(); ++i) pos_[i] = all[ids_[i]];
+    choose_frame(all);
+    for (std::size_t i = 0; i < ids_.size(); ++i) pos_[i] = to_frame(all[ids_[i]]);
     lo_ = hi_ = pos_[0];
     for (const Vec3d& p : pos_) {
       lo_ = {std::min(lo_.x, p.x), std::min(lo_.y, p.y), std::min(lo_.z, p.z)};
@@ -206,26 +233,29 @@ class VertexIndex {
     }
   }
 
-  /// Calls f(v) for every member whose rounded position lies in the box of
-  /// the rounded end points ra, rb and near the segment between them: a point
-  /// exactly between a and b rounds into that box (rounding is monotone) and
-  /// within a few ulp of the segment through ra and rb. Long edges are cut
-  /// into pieces about one cell long, each covering its stretch of the segment
-  /// padded by 2^-40 of the largest coordinate (far more than those ulp), so
-  /// a long edge visits the cells along it rather than its whole box. A
-  /// member near two pieces may be reported twice.
+  /// Calls f(v) for every member whose frame position lies near the segment
+  /// between the rounded end points world_a and world_b (their frame
+  /// positions): within 2^-40 of their largest |coordinate|, where every
+  /// exact point of the segment a-b rounds to (class comment). Long edges are
+  /// cut into pieces about one cell long, each covering its stretch of the
+  /// segment with that pad, so a long edge visits the cells along it rather
+  /// than its whole box. A member near two pieces may be reported twice; some
+  /// that are not near are reported too (callers filter them).
   template <typename F>
-  void for_each_near_segment(const Vec3d& ra, const Vec3d& rb, F&& f, Part part = Part::kAll) const {
-    const Vec3d lo{std::min(ra.x, rb.x), std::min(ra.y, rb.y), std::min(ra.z, rb.z)};
-    const Vec3d hi{std::max(ra.x, rb.x), std::max(ra.y, rb.y), std::max(ra.z, rb.z)};
+  void for_each_near_segment(const Vec3d& world_a, const Vec3d& world_b, F&& f, Part part = Part::kAll) const {
+    // See the class comment for why pad covers the frame's rounding.
+    const double pad = std::max(0x1p-40 * std::max({std::fabs(world_a.x), std::fabs(world_a.y), std::fabs(world_a.z),
+                                                    std::fabs(world_b.x), std::fabs(world_b.y), std::fabs(world_b.z)}),
+                                0x1p-1000);
+    const Vec3d ra = to_frame(world_a), rb = to_frame(world_b);
+    const Vec3d lo{std::min(ra.x, rb.x) - pad, std::min(ra.y, rb.y) - pad, std::min(ra.z, rb.z) - pad};
+    const Vec3d hi{std::max(ra.x, rb.x) + pad, std::max(ra.y, rb.y) + pad, std::max(ra.z, rb.z) + pad};
     const double span = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     const double pieces = std::min(std::ceil(span / cell_), 65536.0);
     std::optional<SegmentTube> tube;  // only crowded cells use it
-    if (!nodes_.empty()) tube.emplace(ra, rb);
+    if (!nodes_.empty()) tube.emplace(ra, rb, pad);
     const SegmentTube* const near = tube ? &*tube : nullptr;
     if (!(pieces > 2)) return for_each_in_box(lo, hi, f, part, near);
-    const double pad = 0x1p-40 * std::max({std::fabs(lo.x), std::fabs(lo.y), std::fabs(lo.z), std::fabs(hi.x),
-                                           std::fabs(hi.y), std::fabs(hi.z)});
     const auto n = static_cast<int>(pieces);
     auto at = [&](int i) {
       const double t = static_cast<double>(i) / n;
@@ -243,7 +273,8 @@ class VertexIndex {
     }
   }
 
-  /// Calls f(v) for every member of `part` whose rounded position lies in
+ private:
+  /// Calls f(v) for every member of `part` whose frame position lies in
   /// [lo, hi] (with a tube: in crowded cells, only where the tube meets the
   /// member's kd-tree leaf).
   template <typename F>
@@ -275,7 +306,30 @@ class VertexIndex {
         }
   }
 
- private:
+  /// The principal frame of the members' positions, or the axes where the
+  /// positions are too large for its rounding bound (class comment) or do
+  /// not spread.
+  void choose_frame(const std::vector<Vec3d>& all) {
+    double largest = 0;
+    for (const std::uint32_t id : ids_)
+      largest = std::max({largest, std::fabs(all[id].x), std::fabs(all[id].y), std::fabs(all[id].z)});
+    if (!(largest >= 0x1p-1000 && largest <= 0x1p1000)) return;
+    // Scaled to at most 1, so that the covariance neither underflows nor
+    // overflows in tiny or huge units (any frame is sound; this one separates).
+    const double scale = 1 / largest;
+    std::vector<std::array<double, 3>> points(ids_.size());
+    for (std::size_t i = 0; i < ids_.size(); ++i) {
+      const Vec3d& p = all[ids_[i]];
+      points[i] = {p.x * scale, p.y * scale, p.z * scale};
+    }
+    FrameAxes frame;
+    if (frame_along(principal_direction(points), frame)) frame_ = frame;
+  }
+  Vec3d to_frame(const Vec3d& p) const {
+    const auto along = [&](const std::array<double, 3>& u) { return u[0] * p.x + u[1] * p.y + u[2] * p.z; };
+    return {along(frame_[0]), along(frame_[1]), along(frame_[2])};
+  }
+
   /// Monotone in each coordinate (floating subtraction and multiplication by
   /// a positive constant are monotone), so a box's cells bracket its points'.
   /// Clamped to [0, 2^20 - 1] first, where truncation is floor.
@@ -374,10 +428,11 @@ class VertexIndex {
     }
   }
 
+  FrameAxes frame_{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};  ///< rows: the frame's axes in world coordinates
   std::vector<Node> nodes_;
   std::vector<std::uint8_t> class_;  ///< per member (cell order): its class
   std::vector<std::uint32_t> ids_;  ///< member i is output vertex ids_[i] (in cell order once built)
-  std::vector<Vec3d> pos_;          ///< its rounded position
+  std::vector<Vec3d> pos_;          ///< its rounded position in the frame (to_frame)
   Vec3d lo_{}, hi_{};
   struct Bounds {  ///< empty: lo > hi
     Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
