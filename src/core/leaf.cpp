@@ -59,9 +59,10 @@ struct LeafScratch {
 /// Inlined into gather's two calls: ~24M calls in the sliver pile, whose
 /// prologue and epilogue were a fifth of the filter's cost (25.05 -> 24.78 G
 /// instructions for the whole run).
-[[gnu::always_inline]] inline bool touches_plane_filtered(std::span<const std::array<double, 3>> verts, std::span<const std::uint8_t> grid,
-                            const SoupPolygon& o, const Plane& plane, const LeafPlaneFilter& filter,
-                            std::vector<std::int8_t>& signs) {
+[[gnu::always_inline]] inline bool touches_plane_filtered(std::span<const std::array<double, 3>> verts,
+                                                          std::span<const std::uint8_t> grid, const SoupPolygon& o,
+                                                          const Plane& plane, const LeafPlaneFilter& filter,
+                                                          std::vector<std::int8_t>& signs) {
   constexpr int kUnsure = LeafPlaneFilter::kUnsure;
   const std::size_t n = verts.size();
   signs.resize(n);
@@ -200,10 +201,10 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
   // In a pile leaf the frame grid names the few polygons that can touch t, or
   // a scan of all frame boxes does (for a polygon wide across the grid, or in
   // a leaf whose grid is coarse: FrameBoxes::candidates), either in ascending
-  // order, as the full scan would visit them. The others'
-  // frame boxes are apart from t's: they cannot touch t, so they change
-  // nothing just beside t and cut nothing, and leaving them out only narrows
-  // the free operands to the exact ones.
+  // order, as the full scan would visit them. The others' frame boxes are
+  // apart from t's: they cannot touch t, so they change nothing just beside
+  // t and cut nothing, and leaving them out only narrows the free operands
+  // to the exact ones.
   if (sc.frame) {
     sc.frame->candidates(t_index, sc.frame_query, sc.candidates);
     for (const std::uint32_t i : sc.candidates) consider(i);
