@@ -10,9 +10,11 @@
 // ownership rule only after the box test: on EMBER case 16 it examined 7x
 // more box pairs than it tested, and that loop was half of the proof.
 #include <cstddef>
+#include <optional>
 #include <span>
 
 #include "core/leaf_diagonals.hpp"
+#include "core/principal_frame.hpp"
 #include "core/solid_check.hpp"
 #include "core/triangle_tree.hpp"
 
@@ -47,6 +49,14 @@ struct ContactSearchResult {
 ContactSearchResult find_contacts(std::span<const ContactTriangle> tris, std::size_t max_pairs,
                                   const TriangleTree* tree = nullptr, std::atomic<bool>* found_one = nullptr,
                                   const LeafDiagonals* diagonals = nullptr);
+
+/// The frame whose extents find_contacts adds to its filters
+/// (leaf_frame_extents.hpp): the principal frame of the triangles' corners,
+/// where a sample of them, queried against `tree` (over tris' boxes), shows
+/// the frame's extents apart for enough of the box pairs that the diagonals
+/// leave (contact_search.cpp: kFramePairsPerTriangle); otherwise none.
+/// Deterministic (a fixed sample). Public for its tests.
+std::optional<FrameAxes> sliver_frame(std::span<const ContactTriangle> tris, const TriangleTree& tree);
 
 /// The work budget: box pairs examined per triangle (plus a fixed allowance
 /// for small inputs) before the search gives up. Ordinary meshes examine

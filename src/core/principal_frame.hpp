@@ -16,6 +16,14 @@ using FrameAxes = std::array<std::array<double, 3>, 3>;
 /// their covariance); the x axis if they do not spread.
 std::array<double, 3> principal_direction(const std::vector<std::array<double, 3>>& points);
 
+/// The points' principal axes as a right-handed frame: the direction in
+/// which they spread most, then the most among those orthogonal to it
+/// (where the points spread in only one direction, frame_along it); false
+/// only where no frame could be formed. A pile of slivers along a plane
+/// (EMBER case 84's second operand) is thin along the third axis, which an
+/// arbitrary frame around the first misses.
+bool principal_frame(const std::vector<std::array<double, 3>>& points, FrameAxes& frame);
+
 /// A right-handed orthonormal frame whose first axis is e0 (a unit vector);
 /// false where e0 is not one.
 bool frame_along(const std::array<double, 3>& e0, FrameAxes& frame);

@@ -105,14 +105,27 @@ ContactTriangle contact_triangle(const std::array<IntPoint, 3>& p, const std::ar
 /// The triangle points at `p`: a temporary would dangle.
 ContactTriangle contact_triangle(std::array<IntPoint, 3>&& p, const std::array<std::uint32_t, 3>& ids) = delete;
 
-/// A triangle's extent along the four diagonals (1,1,1), (1,1,-1), (1,-1,1),
-/// (-1,1,1): lowest projections, then highest. With the box it bounds the
-/// triangle by 14 planes; long slivers across the axes, whose boxes overlap
-/// many others', are told apart by it. Computed where needed (the proof's
-/// candidate pairs), not stored: 32 bytes per triangle of peak memory.
-struct DiagonalExtent {
-  std::array<std::int64_t, 4> lo, hi;
+/// A triangle's extent along D directions: lowest projections, then highest
+/// (diagonal_extent; frame_extent in leaf_frame_extents.hpp).
+template <std::size_t D>
+struct ProjectedExtent {
+  std::array<std::int64_t, D> lo, hi;
 };
+
+/// The two extents do not overlap along some direction. Where each bounds
+/// its triangle's projections (exactly, or widened), the triangles are
+/// disjoint: a common point would project into both.
+template <std::size_t D>
+bool extents_apart(const ProjectedExtent<D>& a, const ProjectedExtent<D>& b) {
+  for (std::size_t k = 0; k < D; ++k)
+    if (a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) return true;
+  return false;
+}
+
+/// A triangle's extent along the four diagonals (1,1,1), (1,1,-1), (1,-1,1),
+/// (-1,1,1). With the box it bounds the triangle by 14 planes; long slivers
+/// across the axes, whose boxes overlap many others', are told apart by it.
+using DiagonalExtent = ProjectedExtent<4>;
 inline DiagonalExtent diagonal_extent(const std::array<IntPoint, 3>& p) {
   // |coordinate| <= 2^25: a projection is below 3 * 2^25 in magnitude.
   static_assert(3 * kCoordLimit < (std::int64_t{1} << 62), "diagonal projections must fit int64");
@@ -131,11 +144,7 @@ inline DiagonalExtent diagonal_extent(const std::array<IntPoint, 3>& p) {
 
 /// The two extents do not overlap along some diagonal: the triangles are
 /// disjoint (exact: integer projections), so they do not meet at all.
-inline bool diagonally_apart(const DiagonalExtent& a, const DiagonalExtent& b) {
-  for (int k = 0; k < 4; ++k)
-    if (a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) return true;
-  return false;
-}
+inline bool diagonally_apart(const DiagonalExtent& a, const DiagonalExtent& b) { return extents_apart(a, b); }
 
 /// Step 1 alone, for one pair: true if the two non-degenerate triangles meet
 /// anywhere except in shared vertices or a shared edge.

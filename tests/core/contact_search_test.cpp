@@ -8,9 +8,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <optional>
 #include <random>
 
 #include "core/contact_search.hpp"
+#include "core/leaf_frame_extents.hpp"
 #include "core/solid_check.hpp"
 #include "contact_test_util.hpp"
 #include "core_test_util.hpp"
@@ -106,6 +108,81 @@ TEST(ContactSearch, ExtremeCoordinatesAreNotMissed) {
   const std::vector<ContactTriangle> ct = with_ids(tris);
   EXPECT_EQ(core::find_contacts(ct, 100).pairs, all_pairs_count(ct));
   EXPECT_GE(all_pairs_count(ct), 1u);
+}
+
+/// A rod of `count` long slivers along the diagonal-free direction d =
+/// (-47, 88, 9) (the sliver pile's rods run near it), placed at random in
+/// its section around `centre`, about 20,000 units long and tens to
+/// thousands wide: their boxes overlap by the dozens, and some of them
+/// cross.
+std::vector<Tri> sliver_rod(std::size_t count, const IntPoint& centre, unsigned seed) {
+  const IntPoint d{-47, 88, 9}, u{88, 47, 0}, v{-423, 792, -9953};  // u, v orthogonal to d
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<std::int64_t> along(0, 100), across(-20, 20), jitter(-60, 60), wide(-400, 400);
+  const auto at = [&](std::int64_t s, std::int64_t a, std::int64_t b) {
+    return IntPoint{centre.x + s * d.x + a * u.x + b * v.x / 10, centre.y + s * d.y + a * u.y + b * v.y / 10,
+                    centre.z + s * d.z + a * u.z + b * v.z / 10};
+  };
+  std::vector<Tri> tris;
+  while (tris.size() < count) {
+    const IntPoint c = at(along(rng), across(rng), across(rng));
+    const IntPoint e = at(200, 0, 0);  // 200 d from the centre
+    Tri t{c,
+          {c.x + e.x - centre.x + jitter(rng), c.y + e.y - centre.y + jitter(rng), c.z + e.z - centre.z + jitter(rng)},
+          {c.x + wide(rng), c.y + wide(rng), c.z + wide(rng)}};
+    if (tris.size() % 7 == 3) t[2] = at(along(rng) + 50, across(rng), across(rng));  // a wide one across the section
+    if (!degenerate(t)) tris.push_back(t);
+  }
+  return tris;
+}
+
+TEST(ContactSearch, FrameExtentsDismissARodsBoxPairsButNoPairThatMeets) {
+  // A rod of slivers off the axes: the search takes its principal frame
+  // (sliver_frame), whose extents dismiss most of the pairs that the boxes
+  // and diagonals keep; every pair they dismiss has no common point (the
+  // exact test says apart and no vertex is shared), and the search counts
+  // exactly the pairs an all-pairs test finds, at any thread count. At the
+  // origin and next to the grid's limit. An ordinary soup is not given a
+  // frame.
+  const std::int64_t far = kCoordLimit - 40000;
+  for (const IntPoint& centre : {IntPoint{0, 0, 0}, IntPoint{far, -far, far}}) {
+    const std::vector<Tri> tris = sliver_rod(600, centre, 41);
+    const std::vector<ContactTriangle> ct = with_ids(tris);
+    std::vector<core::Box32> boxes;
+    for (const ContactTriangle& t : ct) boxes.push_back(core::box_of(t.p()));
+    const core::TriangleTree tree(boxes);
+    const std::optional<core::FrameAxes> frame = core::sliver_frame(ct, tree);
+    ASSERT_TRUE(frame.has_value());
+    std::size_t kept = 0, dismissed = 0;
+    for (std::size_t i = 0; i < ct.size(); ++i)
+      for (std::size_t j = i + 1; j < ct.size(); ++j) {
+        if (!core::overlap(boxes[i], boxes[j]) ||
+            core::diagonally_apart(core::diagonal_extent(ct[i].p()), core::diagonal_extent(ct[j].p())))
+          continue;
+        ++kept;
+        if (!core::extents_apart(core::frame_extent(ct[i].p(), *frame), core::frame_extent(ct[j].p(), *frame))) continue;
+        ++dismissed;
+        EXPECT_FALSE(core::triangles_meet_improperly(ct[i], ct[j])) << i << ", " << j;
+        for (const std::uint32_t a : ct[i].id)
+          for (const std::uint32_t b : ct[j].id) EXPECT_NE(a, b) << i << ", " << j << " share a vertex";
+      }
+    EXPECT_GT(kept, 25u * ct.size()) << "the boxes and diagonals should keep dozens of pairs per triangle";
+    EXPECT_GT(dismissed, kept / 2) << "the frame should dismiss most of them";
+    const std::size_t expected = all_pairs_count(ct);
+    EXPECT_GT(expected, 10u) << "some slivers should cross";
+    for (const int threads : {1, 2, 4}) {
+      tbb::task_arena arena(threads);
+      core::ContactSearchResult r;
+      arena.execute([&] { r = core::find_contacts(ct, std::size_t{1} << 30); });
+      EXPECT_EQ(r.pairs, expected) << threads << " threads";
+      EXPECT_TRUE(r.complete);
+    }
+  }
+  const std::vector<Tri> soup = scattered(1500, 1000, 60, 5);
+  const std::vector<ContactTriangle> ct = with_ids(soup);
+  std::vector<core::Box32> boxes;
+  for (const ContactTriangle& t : ct) boxes.push_back(core::box_of(t.p()));
+  EXPECT_FALSE(core::sliver_frame(ct, core::TriangleTree(boxes)).has_value());
 }
 
 TEST(ContactSearch, ClosedSurfaceHasNoContacts) {
