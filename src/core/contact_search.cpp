@@ -31,10 +31,16 @@ namespace {
 /// the extents, a mask per leaf pair) against ~60 per exact test saved.
 constexpr double kFramePairsPerTriangle = 4;
 /// Triangles sampled for that estimate (evenly spaced): one in 64, from 8
-/// to 32 (each costs a tree query and its box pairs' extents; on pair015,
-/// 2,400 triangles, 32 per operand cost 4.8% of its Boolean's instructions,
-/// 17 cost 3.4%).
-constexpr std::size_t kFrameSampleMin = 8, kFrameSampleMax = 32;
+/// to 16. Each costs a tree query and its box pairs' extents, ~15k
+/// instructions on the bunny pair and pair015 (the tree's upper nodes
+/// overlap). The sliver operands dismiss hundreds of pairs per triangle:
+/// any sample tells. (Comparing each sample only with its 32 neighbours on
+/// either side in the tree's order instead cost as much and missed
+/// pair018's operand.)
+constexpr std::size_t kFrameSampleMin = 8, kFrameSampleMax = 16;
+/// Corners the frame is computed from (evenly spaced): enough to find the
+/// directions.
+constexpr std::size_t kFrameCorners = 1024;
 
 class Search {
  public:
@@ -262,13 +268,12 @@ class Search {
 
 }  // namespace
 
-// The frame of up to 4,096 corners (enough to find the directions). An
-// ordinary mesh has a few box pairs per triangle and none of them apart in
+// An ordinary mesh has a few box pairs per triangle and none of them apart in
 // the frame (bunny pair, pair001): its sample rejects the frame.
 std::optional<FrameAxes> sliver_frame(std::span<const ContactTriangle> tris, const TriangleTree& tree) {
   const std::size_t n = tris.size();
   std::vector<std::array<double, 3>> points;
-  for (std::size_t i = 0; i < n; i += std::max<std::size_t>(1, n / 4096)) {
+  for (std::size_t i = 0; i < n; i += std::max<std::size_t>(1, n / kFrameCorners)) {
     const IntPoint& p = tris[i].p()[0];
     points.push_back({static_cast<double>(p.x), static_cast<double>(p.y), static_cast<double>(p.z)});
   }

@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
 #include <vector>
 
 #include "core/mesh/mesh_output.hpp"
@@ -212,6 +215,69 @@ TEST(MeshStage, HolesThatHideEachOtherAreBridgedInOrder) {
   std::int64_t holes = 0;
   for (const auto& [x0, y0, x1, y1] : squares) holes += (x1 - x0) * (y1 - y0);
   EXPECT_EQ(twice_area, 2 * (100 * 100 - holes));
+}
+
+/// Triangulates `loop` walking round it for every ear and through the grid
+/// (loop_grid.hpp), and expects the same triangles (and success) both ways.
+void expect_same_ears_through_the_grid(const OutputVertices& verts, const std::vector<std::uint32_t>& loop,
+                                       std::size_t& triangles) {
+  const Plane up = axis_plane(2, 0);
+  std::vector<std::array<std::uint32_t, 3>> walked, gridded;
+  const bool walked_ok = triangulate_loop(loop, up, verts, walked, SIZE_MAX);
+  const bool gridded_ok = triangulate_loop(loop, up, verts, gridded, 4);
+  EXPECT_TRUE(walked_ok);
+  EXPECT_EQ(gridded_ok, walked_ok);
+  EXPECT_EQ(gridded, walked);
+  triangles += walked.size();
+}
+
+TEST(MeshStage, LongLoopsClipTheSameEarsThroughTheGrid) {
+  // The ear clipper's grid only narrows which vertices each ear is tested
+  // against: a comb (deep reflex teeth), star-shaped loops of random radii
+  // (with collinear runs: radii on a coarse grid) at small and at large
+  // coordinates, and a square with a star-shaped hole joined by a bridge
+  // (its two end points appear twice) give the same triangles either way.
+  std::size_t triangles = 0;
+  {  // the comb: 60 teeth of height 50 on a base of height 2
+    std::vector<IntPoint> pts{{0, 0, 0}, {240, 0, 0}, {240, 52, 0}};
+    for (std::int64_t t = 59; t >= 0; --t)
+      for (const IntPoint& p : {IntPoint{4 * t + 3, 52, 0}, IntPoint{4 * t + 2, 2, 0}, IntPoint{4 * t + 1, 52, 0}})
+        pts.push_back(p);
+    pts.push_back({0, 52, 0});
+    std::vector<std::uint32_t> loop(pts.size());
+    for (std::uint32_t i = 0; i < loop.size(); ++i) loop[i] = i;
+    expect_same_ears_through_the_grid(grid_vertices(pts), loop, triangles);
+  }
+  std::mt19937 rng(47);
+  for (const std::int64_t offset : {std::int64_t{0}, std::int64_t{1} << 24}) {
+    for (const int n : {70, 300, 1000}) {  // star-shaped around the offset: counter-clockwise by angle
+      std::uniform_int_distribution<int> radius(2, 12);
+      std::vector<IntPoint> pts;
+      for (int i = 0; i < n; ++i) {
+        const double angle = 2 * M_PI * i / n;
+        const double r = 1000.0 * radius(rng);
+        pts.push_back({offset + std::llround(r * std::cos(angle)), offset + std::llround(r * std::sin(angle)), 0});
+      }
+      std::vector<std::uint32_t> loop(pts.size());
+      for (std::uint32_t i = 0; i < loop.size(); ++i) loop[i] = i;
+      expect_same_ears_through_the_grid(grid_vertices(pts), loop, triangles);
+    }
+  }
+  {  // a square with a star-shaped hole (clockwise), bridged from corner 0 to the hole's vertex 0
+    std::vector<IntPoint> pts{{-20000, -20000, 0}, {20000, -20000, 0}, {20000, 20000, 0}, {-20000, 20000, 0}};
+    std::uniform_int_distribution<int> radius(3, 9);
+    const int n = 200;
+    for (int i = 0; i < n; ++i) {
+      const double angle = -2 * M_PI * i / n + 1.25 * M_PI;  // from the lower left, clockwise
+      const double r = 1000.0 * radius(rng);
+      pts.push_back({std::llround(r * std::cos(angle)), std::llround(r * std::sin(angle)), 0});
+    }
+    std::vector<std::uint32_t> loop{0};
+    for (std::uint32_t i = 0; i <= static_cast<std::uint32_t>(n); ++i) loop.push_back(4 + i % n);
+    for (const std::uint32_t corner : {0u, 1u, 2u, 3u}) loop.push_back(corner);
+    expect_same_ears_through_the_grid(grid_vertices(pts), loop, triangles);
+  }
+  EXPECT_GT(triangles, 2000u);
 }
 
 }  // namespace

@@ -208,10 +208,16 @@ class PlaneOrientation {
 bool triangulate_region(const Regions& regions, std::uint32_t region, const OutputVertices& verts,
                         std::vector<std::array<std::uint32_t, 3>>& out);
 
+/// Loops longer than this find the vertices an ear must not hold through a
+/// grid (loop_grid.hpp) instead of walking round the loop for each ear.
+inline constexpr std::size_t kEarGridLoop = 64;
+
 /// Ear-clips one cyclic polygon (no holes) given as vertex ids, counter-
 /// clockwise around `plane`. False if no valid ear can be found.
+/// `grid_from`: the loop length from which the grid is used (tests compare
+/// both ways; the triangles are the same).
 bool triangulate_loop(std::span<const std::uint32_t> loop, const Plane& plane, const OutputVertices& verts,
-                      std::vector<std::array<std::uint32_t, 3>>& out);
+                      std::vector<std::array<std::uint32_t, 3>>& out, std::size_t grid_from = kEarGridLoop + 1);
 
 /// Ear-clips a polygon with holes: `outer` counter-clockwise around `plane`,
 /// each hole clockwise, joined to it by bridges first. False if a bridge or

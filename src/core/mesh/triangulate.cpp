@@ -11,6 +11,7 @@
 #include <optional>
 #include <span>
 
+#include "core/mesh/loop_grid.hpp"
 #include "core/mesh/mesh_output.hpp"
 #include "ember/geometry/exact_order.hpp"
 
@@ -24,7 +25,9 @@ struct Ctx {
   const OutputVertices& verts;
   PlaneOrientation in_plane;
   const Point& pt(std::uint32_t i) const { return verts.exact[i]; }
-  int orient(std::uint32_t a, std::uint32_t b, std::uint32_t c) const { return in_plane(pt(a), pt(b), pt(c)); }
+  [[gnu::always_inline]] int orient(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+    return in_plane(pt(a), pt(b), pt(c));
+  }
 };
 
 /// x strictly inside the angle at corner b of a loop running a -> b -> c
@@ -183,13 +186,47 @@ struct EarCandidate {
   bool operator<(const EarCandidate& o) const { return q != o.q ? q < o.q : node > o.node; }
 };
 
+/// The vertices an ear a b c must not hold, offered to f until it says
+/// true: every vertex now in the loop but a, b and c, walking round it.
+struct WalkRound {
+  template <typename F>
+  [[gnu::always_inline]] bool any(std::span<const EarNode> node, std::uint32_t a, std::uint32_t, std::uint32_t c,
+                                  F&& f) const {
+    for (std::uint32_t x = node[c].next; x != a; x = node[x].next)
+      if (f(x)) return true;
+    return false;
+  }
+};
+
+/// The same for long loops, through a LoopGrid of the loop's vertices (each
+/// walk had cost O(n)): those in the cells of the ear's box, still in the
+/// loop; the caller's double filter and exact tests decide as before, so
+/// the same ears are clipped.
+struct FromGrid {
+  const Ctx& k;
+  std::span<const std::uint32_t> loop;
+  LoopGrid grid;
+  template <typename F>
+  bool any(std::span<const EarNode> node, std::uint32_t a, std::uint32_t b, std::uint32_t c, F&& f) const {
+    std::array<double, 3> lo, hi;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double fa = k.pt(loop[a]).f[axis], fb = k.pt(loop[b]).f[axis], fc = k.pt(loop[c]).f[axis];
+      lo[axis] = std::min({fa, fb, fc});
+      hi[axis] = std::max({fa, fb, fc});
+    }
+    return grid.any(lo, hi, [&](std::uint32_t x) { return x != a && x != b && x != c && !node[x].removed && f(x); });
+  }
+};
+
+
 /// The ear clipping of `loop` with working memory `node` (one per vertex)
 /// and `heap` (room for 2 n entries: it starts with n and each clip pops at
 /// least one and pushes two, n - 3 times). The heap is std::priority_queue's
 /// (push_heap / pop_heap), so the ears come in the same order whatever
 /// memory holds them.
+template <typename Others>
 bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarNode> node,
-               std::span<EarCandidate> heap, std::vector<std::array<std::uint32_t, 3>>& out) {
+               std::span<EarCandidate> heap, const Others& others, std::vector<std::array<std::uint32_t, 3>>& out) {
   const std::size_t before = out.size();
   const std::uint32_t size = static_cast<std::uint32_t>(loop.size());
   std::size_t n = size;
@@ -205,17 +242,16 @@ bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarN
     }
     return false;
   };
-  auto is_ear = [&](std::uint32_t b) {
+  auto is_ear = [&](std::uint32_t b) __attribute__((always_inline)) {
     const std::uint32_t a = node[b].prev, c = node[b].next;
     if (k.orient(loop[a], loop[b], loop[c]) <= 0) return false;
-    for (std::uint32_t x = node[c].next; x != a; x = node[x].next) {
+    // x, another vertex of the loop now, lies in the closed triangle a b c.
+    return !others.any(node, a, b, c, [&](std::uint32_t x) __attribute__((always_inline)) {
       const std::uint32_t v = loop[x];
-      if (v == loop[a] || v == loop[b] || v == loop[c] || box_excludes(a, b, c, x)) continue;
-      if (k.orient(loop[a], loop[b], v) >= 0 && k.orient(loop[b], loop[c], v) >= 0 &&
-          k.orient(loop[c], loop[a], v) >= 0)
-        return false;
-    }
-    return true;
+      if (v == loop[a] || v == loop[b] || v == loop[c] || box_excludes(a, b, c, x)) return false;
+      return k.orient(loop[a], loop[b], v) >= 0 && k.orient(loop[b], loop[c], v) >= 0 &&
+             k.orient(loop[c], loop[a], v) >= 0;
+    });
   };
   // Best-shaped ear first (Manifold clips sharpest ears first for the same
   // reason): an ear at a nearly straight vertex would be a sliver, whose tiny
@@ -278,20 +314,22 @@ bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarN
 }  // namespace
 
 bool triangulate_loop(std::span<const std::uint32_t> loop, const Plane& plane, const OutputVertices& verts,
-                      std::vector<std::array<std::uint32_t, 3>>& out) {
+                      std::vector<std::array<std::uint32_t, 3>>& out, std::size_t grid_from) {
   const Ctx k{verts, plane};
   // Most loops are small (the direct route's faces: a handful of vertices):
   // their working memory lives on the stack, which saved the route a third
   // of its ear clipping's instructions in allocations.
   constexpr std::size_t kSmall = 16;
-  if (loop.size() <= kSmall) {
+  if (loop.size() <= kSmall && loop.size() < grid_from) {
     std::array<EarNode, kSmall> node;
     std::array<EarCandidate, 2 * kSmall> heap;
-    return clip_ears(k, loop, node, heap, out);
+    return clip_ears(k, loop, node, heap, WalkRound{}, out);
   }
   std::vector<EarNode> node(loop.size());
   std::vector<EarCandidate> heap(2 * loop.size());
-  return clip_ears(k, loop, node, heap, out);
+  if (loop.size() < grid_from) return clip_ears(k, loop, node, heap, WalkRound{}, out);
+  const FromGrid grid{k, loop, LoopGrid(loop.size(), [&](std::size_t i) -> const std::array<double, 3>& { return k.pt(loop[i]).f; })};
+  return clip_ears(k, loop, node, heap, grid, out);
 }
 
 bool triangulate_region(const Regions& regions, std::uint32_t region, const OutputVertices& verts,
