@@ -218,7 +218,6 @@ struct FromGrid {
   }
 };
 
-
 /// The ear clipping of `loop` with working memory `node` (one per vertex)
 /// and `heap` (room for 2 n entries: it starts with n and each clip pops at
 /// least one and pushes two, n - 3 times). The heap is std::priority_queue's
