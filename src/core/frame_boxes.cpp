@@ -61,7 +61,7 @@ FrameBoxes::FrameBoxes(const SoupApprox& a, std::span<const std::uint32_t> opera
   // Any frame is sound; the principal one makes the boxes of a pile's
   // slivers thin across it.
   FrameAxes frame;
-  if (!frame_along(principal_direction(a.verts), frame)) return;
+  if (!principal_frame(a.verts, frame)) return;
   V3 c{};
   double m = 0;
   for (const V3& p : a.verts)
@@ -89,7 +89,7 @@ FrameBoxes::FrameBoxes(const SoupApprox& a, std::span<const std::uint32_t> opera
     for (std::size_t i = 0; i < n; ++i)
       if (operand[i] == top[f]) own.insert(own.end(), a.of(i).begin(), a.of(i).end());
     FrameAxes of_operand;
-    if (!frame_along(principal_direction(own), of_operand)) {
+    if (!principal_frame(own, of_operand)) {
       operand_boxes_.clear();
       return;
     }

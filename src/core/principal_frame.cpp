@@ -55,11 +55,6 @@ bool dominant(const std::array<V3, 3>& cov, const V3* normal, V3& v) {
 
 }  // namespace
 
-std::array<double, 3> principal_direction(const std::vector<std::array<double, 3>>& points) {
-  V3 v;
-  return dominant(covariance(points), nullptr, v) ? v : V3{1, 0, 0};
-}
-
 bool principal_frame(const std::vector<std::array<double, 3>>& points, FrameAxes& frame) {
   const std::array<V3, 3> cov = covariance(points);
   V3 e0, e1;

@@ -12,12 +12,9 @@ namespace ember::core {
 
 using FrameAxes = std::array<std::array<double, 3>, 3>;
 
-/// The unit vector along which the points spread most (power iteration on
-/// their covariance); the x axis if they do not spread.
-std::array<double, 3> principal_direction(const std::vector<std::array<double, 3>>& points);
-
-/// The points' principal axes as a right-handed frame: the direction in
-/// which they spread most, then the most among those orthogonal to it
+/// The points' principal axes (power iteration on their covariance) as a
+/// right-handed frame: the direction in which they spread most (the x axis if
+/// they do not spread), then the most among those orthogonal to it
 /// (where the points spread in only one direction, frame_along it); false
 /// only where no frame could be formed. A pile of slivers along a plane
 /// (EMBER case 84's second operand) is thin along the third axis, which an

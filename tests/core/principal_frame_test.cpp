@@ -43,7 +43,6 @@ TEST(PrincipalFrame, FindsTheRodsLineAndTheFlatPilesNormal) {
   EXPECT_GT(std::fabs(dot(f[0], d)), 0.9999);
   EXPECT_GT(std::fabs(dot(f[1], p)), 0.999);
   EXPECT_GT(std::fabs(dot(f[2], q)), 0.999) << "the pile's thin direction is the third axis";
-  EXPECT_GT(std::fabs(dot(core::principal_direction(points), d)), 0.9999);
 }
 
 TEST(PrincipalFrame, DegeneratePointSetsStillGetAFrame) {

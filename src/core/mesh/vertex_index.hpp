@@ -323,7 +323,7 @@ class VertexIndex {
       points[i] = {p.x * scale, p.y * scale, p.z * scale};
     }
     FrameAxes frame;
-    if (frame_along(principal_direction(points), frame)) frame_ = frame;
+    if (principal_frame(points, frame)) frame_ = frame;
   }
   Vec3d to_frame(const Vec3d& p) const {
     const auto along = [&](const std::array<double, 3>& u) { return u[0] * p.x + u[1] * p.y + u[2] * p.z; };
