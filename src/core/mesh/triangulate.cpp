@@ -186,12 +186,18 @@ struct EarCandidate {
   bool operator<(const EarCandidate& o) const { return q != o.q ? q < o.q : node > o.node; }
 };
 
+/// The box of an ear's corners (their double approximations), worked out
+/// once per ear test rather than once per vertex tested against it.
+struct EarBox {
+  std::array<double, 3> lo, hi;
+};
+
 /// The vertices an ear a b c must not hold, offered to f until it says
 /// true: every vertex now in the loop but a, b and c, walking round it.
 struct WalkRound {
   template <typename F>
   [[gnu::always_inline]] bool any(std::span<const EarNode> node, std::uint32_t a, std::uint32_t, std::uint32_t c,
-                                  F&& f) const {
+                                  const EarBox&, F&& f) const {
     for (std::uint32_t x = node[c].next; x != a; x = node[x].next)
       if (f(x)) return true;
     return false;
@@ -207,14 +213,10 @@ struct FromGrid {
   std::span<const std::uint32_t> loop;
   LoopGrid grid;
   template <typename F>
-  bool any(std::span<const EarNode> node, std::uint32_t a, std::uint32_t b, std::uint32_t c, F&& f) const {
-    std::array<double, 3> lo, hi;
-    for (int axis = 0; axis < 3; ++axis) {
-      const double fa = k.pt(loop[a]).f[axis], fb = k.pt(loop[b]).f[axis], fc = k.pt(loop[c]).f[axis];
-      lo[axis] = std::min({fa, fb, fc});
-      hi[axis] = std::max({fa, fb, fc});
-    }
-    return grid.any(lo, hi, [&](std::uint32_t x) { return x != a && x != b && x != c && !node[x].removed && f(x); });
+  bool any(std::span<const EarNode> node, std::uint32_t a, std::uint32_t b, std::uint32_t c, const EarBox& box,
+           F&& f) const {
+    return grid.any(box.lo, box.hi,
+                    [&](std::uint32_t x) { return x != a && x != b && x != c && !node[x].removed && f(x); });
   }
 };
 
@@ -231,11 +233,9 @@ bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarN
   std::size_t n = size;
   for (std::uint32_t i = 0; i < size; ++i) node[i] = {i == 0 ? size - 1 : i - 1, i + 1 == size ? 0 : i + 1, 0, false};
   // Conservative double boxes: Point::f errs < 8 ulp; 2^-40 relative covers it.
-  auto box_excludes = [&](std::size_t a, std::size_t b, std::size_t c, std::size_t x) {
+  auto box_excludes = [&](const EarBox& box, std::size_t x) {
     for (int axis = 0; axis < 3; ++axis) {
-      const double fa = k.pt(loop[a]).f[axis], fb = k.pt(loop[b]).f[axis], fc = k.pt(loop[c]).f[axis];
-      const double fx = k.pt(loop[x]).f[axis];
-      const double lo = std::min({fa, fb, fc}), hi = std::max({fa, fb, fc});
+      const double lo = box.lo[axis], hi = box.hi[axis], fx = k.pt(loop[x]).f[axis];
       const double slack = 0x1p-40 * std::max({std::fabs(lo), std::fabs(hi), std::fabs(fx)});
       if (fx < lo - slack || fx > hi + slack) return true;
     }
@@ -244,10 +244,16 @@ bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarN
   auto is_ear = [&](std::uint32_t b) __attribute__((always_inline)) {
     const std::uint32_t a = node[b].prev, c = node[b].next;
     if (k.orient(loop[a], loop[b], loop[c]) <= 0) return false;
+    EarBox box;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double fa = k.pt(loop[a]).f[axis], fb = k.pt(loop[b]).f[axis], fc = k.pt(loop[c]).f[axis];
+      box.lo[axis] = std::min({fa, fb, fc});
+      box.hi[axis] = std::max({fa, fb, fc});
+    }
     // x, another vertex of the loop now, lies in the closed triangle a b c.
-    return !others.any(node, a, b, c, [&](std::uint32_t x) __attribute__((always_inline)) {
+    return !others.any(node, a, b, c, box, [&](std::uint32_t x) __attribute__((always_inline)) {
       const std::uint32_t v = loop[x];
-      if (v == loop[a] || v == loop[b] || v == loop[c] || box_excludes(a, b, c, x)) return false;
+      if (v == loop[a] || v == loop[b] || v == loop[c] || box_excludes(box, x)) return false;
       return k.orient(loop[a], loop[b], v) >= 0 && k.orient(loop[b], loop[c], v) >= 0 &&
              k.orient(loop[c], loop[a], v) >= 0;
     });
