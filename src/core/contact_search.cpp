@@ -121,7 +121,8 @@ class Search {
   /// disjoint), if their boxes overlap: tested here, before the call, since
   /// most node pairs do not and the test costs less than a call.
   void cross(std::size_t a, std::size_t b, int depth, std::size_t& examined) {
-    if (overlap(tree().node(a), tree().node(b))) cross_overlapping(a, b, depth, examined);
+    if (overlap(tree().node(a), tree().node(b)) && !(frame_ && frame_->nodes_apart(a, b)))
+      cross_overlapping(a, b, depth, examined);
   }
 
   void cross_overlapping(std::size_t a, std::size_t b, int depth, std::size_t& examined) {
@@ -169,7 +170,8 @@ class Search {
       // Pushed in reverse: visited in the recursion's order (al-bl, al-br, ar-bl, ar-br).
       for (std::size_t ca = 2 * v.a + 2; ca > 2 * v.a; --ca)
         for (std::size_t cb = 2 * v.b + 2; cb > 2 * v.b; --cb)
-          if (overlap(tree().node(ca), tree().node(cb))) stack[top++] = {ca, cb, v.depth + 1};
+          if (overlap(tree().node(ca), tree().node(cb)) && !(Framed && frame_->nodes_apart(ca, cb)))
+            stack[top++] = {ca, cb, v.depth + 1};
     }
   }
 #if EMBER_WIDE_LANES

@@ -89,6 +89,13 @@ TEST(LeafDiagonals, MasksMatchDiagonallyApartPairByPair) {
   EXPECT_GT(near, 10000);
 }
 
+/// The slots of a leaf node that hold triangles (none for the leaves past
+/// the last triangle).
+std::size_t leaf_begin(const core::TriangleTree& tree, std::size_t leaf) {
+  return std::min(tree.leaf_slots(leaf).first, tree.size());
+}
+std::size_t leaf_end(const core::TriangleTree& tree, std::size_t leaf) { return tree.leaf_slots(leaf).second; }
+
 /// A random unit vector and a frame around it (not the coordinate axes).
 core::FrameAxes random_frame(std::mt19937& rng) {
   std::normal_distribution<double> g;
@@ -114,6 +121,75 @@ TEST(LeafFrameExtents, MasksMatchExtentsApartPairByPair) {
   }
   EXPECT_GT(apart, 10000);
   EXPECT_GT(near, 10000);
+}
+
+/// The leaf nodes under tree node `node` (heap order).
+void leaves_under(const core::TriangleTree& tree, std::size_t node, std::vector<std::size_t>& out) {
+  if (node >= tree.first_leaf()) {
+    out.push_back(node);
+    return;
+  }
+  leaves_under(tree, 2 * node + 1, out);
+  leaves_under(tree, 2 * node + 2, out);
+}
+
+TEST(LeafFrameExtents, NodesApartExactlyWhereTheirTrianglesHullsAre) {
+  // nodes_apart(a, b) prunes whole subtrees of the contact search: it must
+  // hold only where every triangle under a is apart from every one under b,
+  // and (to be worth it) wherever the hulls of their extents are apart.
+  // Small triangles scattered over the range, so that many node pairs are
+  // apart and many are not; the last leaves partly filled or empty.
+  std::mt19937 rng(41);
+  int apart = 0, near = 0;
+  for (const std::int64_t range : {std::int64_t{40}, std::int64_t{5000}, kCoordLimit - 100}) {
+    for (const std::size_t n : {1u, 9u, 70u, 300u}) {
+      std::uniform_int_distribution<std::int64_t> at(-range, range), jitter(-range / 20, range / 20);
+      std::vector<std::array<IntPoint, 3>> corners(n);
+      std::vector<core::ContactTriangle> tris(n);
+      std::vector<core::Box32> boxes(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const IntPoint c{at(rng), at(rng), at(rng)};
+        for (IntPoint& p : corners[i]) p = {c.x + jitter(rng), c.y + jitter(rng), c.z + jitter(rng)};
+        tris[i].corners = &corners[i];
+        boxes[i] = core::box_of(tris[i].p());
+      }
+      const core::TriangleTree tree(boxes);
+      const core::FrameAxes frame = random_frame(rng);
+      const core::LeafFrameExtents leaves(tree, tris, frame);
+      const std::size_t nodes = 2 * tree.first_leaf() + 1;
+      for (std::size_t a = 0; a < nodes; ++a) {
+        for (std::size_t b = 0; b < nodes; ++b) {
+          std::vector<std::size_t> la, lb;
+          leaves_under(tree, a, la);
+          leaves_under(tree, b, lb);
+          std::vector<core::ProjectedExtent<3>> ea, eb;
+          for (const std::size_t leaf : la)
+            for (std::size_t s = leaf_begin(tree, leaf); s < leaf_end(tree, leaf); ++s)
+              ea.push_back(core::frame_extent(corners[tree.item(s)], frame));
+          for (const std::size_t leaf : lb)
+            for (std::size_t s = leaf_begin(tree, leaf); s < leaf_end(tree, leaf); ++s)
+              eb.push_back(core::frame_extent(corners[tree.item(s)], frame));
+          // The hulls apart along an axis; a node without triangles is
+          // apart from everything.
+          bool hulls_apart = ea.empty() || eb.empty();
+          for (std::size_t k = 0; k < 3 && !hulls_apart; ++k) {
+            std::int64_t alo = INT64_MAX, ahi = INT64_MIN, blo = INT64_MAX, bhi = INT64_MIN;
+            for (const auto& e : ea) alo = std::min(alo, e.lo[k]), ahi = std::max(ahi, e.hi[k]);
+            for (const auto& e : eb) blo = std::min(blo, e.lo[k]), bhi = std::max(bhi, e.hi[k]);
+            hulls_apart = ahi < blo || bhi < alo;
+          }
+          ASSERT_EQ(leaves.nodes_apart(a, b), hulls_apart) << "n " << n << " nodes " << a << ", " << b;
+          if (hulls_apart)
+            for (const auto& x : ea)
+              for (const auto& y : eb) ASSERT_TRUE(core::extents_apart(x, y));
+          apart += hulls_apart && !ea.empty() && !eb.empty();
+          near += !hulls_apart;
+        }
+      }
+    }
+  }
+  EXPECT_GT(apart, 5000);
+  EXPECT_GT(near, 5000);
 }
 
 TEST(LeafFrameExtents, BoundsHoldTheExactProjectionsAtTheGridsLimits) {
