@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/leaf_diagonals.hpp"
+#include "core/frame_sample.hpp"
 #include "core/leaf_frame_extents.hpp"
 #include "core/leaf_vertex_ids.hpp"
 #include "core/triangle_tree.hpp"
@@ -24,23 +25,6 @@
 namespace ember::core {
 
 namespace {
-
-/// Where the sample's triangles lose at least this many box pairs per
-/// triangle to the frame that the boxes and diagonals keep, the frame's
-/// extents are worth building: ~200 instructions per triangle (the frame,
-/// the extents, a mask per leaf pair) against ~60 per exact test saved.
-constexpr double kFramePairsPerTriangle = 4;
-/// Triangles sampled for that estimate (evenly spaced): one in 64, from 8
-/// to 16. Each costs a tree query and its box pairs' extents, ~15k
-/// instructions on the bunny pair and pair015 (the tree's upper nodes
-/// overlap). The sliver operands dismiss hundreds of pairs per triangle:
-/// any sample tells. (Comparing each sample only with its 32 neighbours on
-/// either side in the tree's order instead cost as much and missed
-/// pair018's operand.)
-constexpr std::size_t kFrameSampleMin = 8, kFrameSampleMax = 16;
-/// Corners the frame is computed from (evenly spaced): enough to find the
-/// directions.
-constexpr std::size_t kFrameCorners = 1024;
 
 class Search {
  public:
@@ -276,24 +260,12 @@ class Search {
 // An ordinary mesh has a few box pairs per triangle and none of them apart in
 // the frame (bunny pair, pair001): its sample rejects the frame.
 std::optional<FrameAxes> sliver_frame(std::span<const ContactTriangle> tris, const TriangleTree& tree) {
-  const std::size_t n = tris.size();
-  std::vector<std::array<double, 3>> points;
-  for (std::size_t i = 0; i < n; i += std::max<std::size_t>(1, n / kFrameCorners)) {
-    const IntPoint& p = tris[i].p()[0];
-    points.push_back({static_cast<double>(p.x), static_cast<double>(p.y), static_cast<double>(p.z)});
-  }
+  const auto corners = [&](std::size_t i) -> const std::array<IntPoint, 3>& { return tris[i].p(); };
   FrameAxes frame;
-  if (!principal_frame(points, frame)) return std::nullopt;
-  std::size_t sampled = 0, dismissed = 0;
-  const std::size_t samples = std::clamp<std::size_t>(n / 64, kFrameSampleMin, kFrameSampleMax);
-  for (std::size_t i = 0; i < n; i += std::max<std::size_t>(1, n / samples), ++sampled) {
-    const DiagonalExtent diagonal = diagonal_extent(tris[i].p());
-    const ProjectedExtent<3> along = frame_extent(tris[i].p(), frame);
-    tree.for_each_overlapping(box_of(tris[i].p()), [&](std::uint32_t j) {
-      if (j == i || diagonally_apart(diagonal, diagonal_extent(tris[j].p()))) return;
-      dismissed += extents_apart(along, frame_extent(tris[j].p(), frame));
-    });
-  }
+  if (!principal_frame(frame_points(tris.size(), corners), frame)) return std::nullopt;
+  std::size_t sampled = 0;
+  const std::size_t dismissed =
+      frame_dismissals<1>(tris.size(), corners, tree, corners, std::array<FrameAxes, 1>{frame}, true, sampled)[0];
   // Each pair is met from both of its triangles.
   if (static_cast<double>(dismissed) < 2 * kFramePairsPerTriangle * static_cast<double>(sampled)) return std::nullopt;
   return frame;

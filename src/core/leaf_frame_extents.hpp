@@ -56,13 +56,22 @@ class LeafFrameExtents : public LeafExtents<3> {
     fill(tree, [&](std::uint32_t item) { return frame_extent(tris[item].p(), frame); });
     fill_nodes(tree);
   }
+  /// Over a tree of grid triangles (item i: corners[i]): an operand's, for
+  /// the solid path's partner search (both operands in one frame).
+  LeafFrameExtents(const TriangleTree& tree, std::span<const std::array<IntPoint, 3>> corners, const FrameAxes& frame) {
+    fill(tree, [&](std::uint32_t item) { return frame_extent(corners[item], frame); });
+    fill_nodes(tree);
+  }
 
   /// Every triangle under tree node a is apart in the frame from every one
   /// under node b (their extents' hulls are apart along an axis): a node
   /// pair whose boxes overlap but whose slivers lie side by side across the
   /// frame (EMBER case 582's rod) needs no visit to its leaves.
-  bool nodes_apart(std::size_t a, std::size_t b) const {
-    const NodeExtent &x = node_[a], &y = node_[b];
+  bool nodes_apart(std::size_t a, std::size_t b) const { return nodes_apart(a, *this, b); }
+  /// The same for node a of this tree and node b of another's, in the same
+  /// frame (the partner search's two operands).
+  bool nodes_apart(std::size_t a, const LeafFrameExtents& other, std::size_t b) const {
+    const NodeExtent &x = node_[a], &y = other.node_[b];
     bool apart = false;
     for (std::size_t k = 0; k < 3; ++k) apart |= x.hi[k] < y.lo[k] || y.hi[k] < x.lo[k];
     return apart;

@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "core/operand_trees.hpp"
+#include "core/principal_frame.hpp"
 #include "core/solid_check.hpp"
 #include "core/solve.hpp"
 
@@ -57,6 +58,18 @@ struct Partners {
   std::span<const std::uint32_t> of(std::uint32_t id) const { return {ids.data() + begin[id], begin[id + 1] - begin[id]}; }
 };
 
+/// A frame in which operands X and Y's slivers lie apart, if a sample of X's
+/// triangles queried against Y's tree shows it worth its extents
+/// (frame_sample.hpp): of X's principal frame and Y's, the one that
+/// dismisses more. EMBER cases 582 and 16 get one (their sliver operand's);
+/// ordinary pairs (the bunny pair) none, and neither does pair020, whose
+/// 857k exact tests for 12.8k meeting pairs the frames hardly thin (the
+/// sample, either way round: < 2 pairs per triangle). None where either
+/// operand has fewer than 256 triangles.
+/// Deterministic (a fixed sample). Public for its tests.
+std::optional<FrameAxes> partner_frame(std::span<const std::array<IntPoint, 3>> x,
+                                       std::span<const std::array<IntPoint, 3>> y, const TriangleTree& y_tree);
+
 /// Broad and narrow phase: the meeting pairs of the n triangles (ids) of
 /// `trees`' operands (their diagonals too). Deterministic (sorted), whatever
 /// the schedule; incomplete (and not to be used) once `stop` is set. Gives
@@ -69,9 +82,10 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
 /// ended (boolean.cpp), per input triangle (plus kSpeculativeAllowance): the
 /// search gives up, and runs again once the proof has passed. In those
 /// units the pair and paper cases of the benchmark visit at most 113 per
-/// triangle (EMBER case 582; the bunny pair 70); the sliver pile's twin
-/// rods, which the proof then rejects, 2,888: their search held one of two
-/// threads for the proof's whole 0.55 s.
+/// triangle (EMBER case 582 before it had a common frame, partner_frame;
+/// the bunny pair 70); the sliver pile's twin rods, which the proof then
+/// rejects, 2,888: their search held one of two threads for the proof's
+/// whole 0.55 s.
 inline constexpr std::size_t kSpeculativePartnersPerTriangle = 512;
 inline constexpr std::size_t kSpeculativeAllowance = std::size_t{1} << 16;
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <random>
 #include <tuple>
 #include <vector>
 
@@ -12,6 +13,38 @@
 namespace ember::test {
 
 using Tri = std::array<IntPoint, 3>;
+
+inline bool degenerate(const Tri& t) {
+  const std::array<std::int64_t, 3> n = grid_normal(t[0], t[1], t[2]);
+  return n[0] == 0 && n[1] == 0 && n[2] == 0;
+}
+
+/// A rod of `count` long slivers along the diagonal-free direction d =
+/// (-47, 88, 9) (the sliver pile's rods run near it), placed at random in
+/// its section around `centre`, about 20,000 units long and tens to
+/// thousands wide: their boxes overlap by the dozens, and some of them
+/// cross.
+inline std::vector<Tri> sliver_rod(std::size_t count, const IntPoint& centre, unsigned seed) {
+  const IntPoint d{-47, 88, 9}, u{88, 47, 0}, v{-423, 792, -9953};  // u, v orthogonal to d
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<std::int64_t> along(0, 100), across(-20, 20), jitter(-60, 60), wide(-400, 400);
+  const auto at = [&](std::int64_t s, std::int64_t a, std::int64_t b) {
+    return IntPoint{centre.x + s * d.x + a * u.x + b * v.x / 10, centre.y + s * d.y + a * u.y + b * v.y / 10,
+                    centre.z + s * d.z + a * u.z + b * v.z / 10};
+  };
+  std::vector<Tri> tris;
+  while (tris.size() < count) {
+    const IntPoint c = at(along(rng), across(rng), across(rng));
+    const IntPoint e = at(200, 0, 0);  // 200 d from the centre
+    Tri t{c,
+          {c.x + e.x - centre.x + jitter(rng), c.y + e.y - centre.y + jitter(rng), c.z + e.z - centre.z + jitter(rng)},
+          {c.x + wide(rng), c.y + wide(rng), c.z + wide(rng)}};
+    if (tris.size() % 7 == 3) t[2] = at(along(rng) + 50, across(rng), across(rng));  // a wide one across the section
+    if (!degenerate(t)) tris.push_back(t);
+  }
+  return tris;
+}
+
 
 /// Contact triangles with ids equal iff positions equal (as the set-up's weld
 /// gives). They refer to the corners in `tris`, which must outlive them.

@@ -179,9 +179,10 @@ TEST(LeafFrameExtents, NodesApartExactlyWhereTheirTrianglesHullsAre) {
             hulls_apart = ahi < blo || bhi < alo;
           }
           ASSERT_EQ(leaves.nodes_apart(a, b), hulls_apart) << "n " << n << " nodes " << a << ", " << b;
-          if (hulls_apart)
+          if (hulls_apart) {
             for (const auto& x : ea)
               for (const auto& y : eb) ASSERT_TRUE(core::extents_apart(x, y));
+          }
           apart += hulls_apart && !ea.empty() && !eb.empty();
           near += !hulls_apart;
         }

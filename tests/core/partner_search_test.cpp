@@ -9,10 +9,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <optional>
 #include <random>
 #include <span>
 #include <vector>
 
+#include "contact_test_util.hpp"
+#include "core/leaf_frame_extents.hpp"
 #include "core/operand_trees.hpp"
 #include "core/solid_path.hpp"
 
@@ -90,6 +93,41 @@ TEST(PartnerSearch, ThreeOperandsPairEveryTwo) {
                          random_triangles(rng, 80, 20, 10)},
                         meeting);
   EXPECT_GT(meeting, 200u) << meeting;
+}
+
+TEST(PartnerSearch, ACommonFrameDismissesTwoRodsPairsButNoPairThatMeets) {
+  // Two rods of slivers off the axes, one through the other (as EMBER case
+  // 582's and 16's sliver operands lie in their partners): the search takes
+  // a common frame (partner_frame) whose extents and node hulls dismiss most
+  // box pairs, and must still report exactly the pairs that meet. At the
+  // origin and next to the grid's limit. Ordinary soups get no frame.
+  const std::int64_t far = kCoordLimit - 40000;
+  std::size_t meeting = 0;
+  for (const IntPoint& centre : {IntPoint{0, 0, 0}, IntPoint{far, -far, far}}) {
+    const std::vector<Tri> a = sliver_rod(500, centre, 43);
+    const std::vector<Tri> b = sliver_rod(300, {centre.x + 900, centre.y + 400, centre.z - 300}, 44);
+    std::vector<core::Box32> b_boxes;
+    for (const Tri& t : b) b_boxes.push_back(core::box_of(t));
+    const core::TriangleTree b_tree(b_boxes);
+    const std::optional<core::FrameAxes> frame = core::partner_frame(a, b, b_tree);
+    ASSERT_TRUE(frame.has_value());
+    // The frame is worth it: most box pairs lie apart in it.
+    std::size_t box_pairs = 0, apart = 0;
+    for (const Tri& s : a)
+      for (const Tri& t : b) {
+        if (!core::overlap(core::box_of(s), core::box_of(t))) continue;
+        ++box_pairs;
+        apart += core::extents_apart(core::frame_extent(s, *frame), core::frame_extent(t, *frame));
+      }
+    EXPECT_GT(apart, box_pairs / 2) << apart << " of " << box_pairs;
+    expect_exact_partners({a, b}, meeting);
+  }
+  EXPECT_GT(meeting, 100u) << meeting;
+  std::mt19937 rng(75);
+  const auto x = random_triangles(rng, 300, 1000, 300), y = random_triangles(rng, 300, 1000, 300);
+  std::vector<core::Box32> y_boxes;
+  for (const auto& t : y) y_boxes.push_back(core::box_of(t));
+  EXPECT_FALSE(core::partner_frame(x, y, core::TriangleTree(y_boxes)).has_value());
 }
 
 /// A partner search started before the proof ended is bounded
