@@ -93,8 +93,8 @@ template <bool swap, bool Wide, bool Framed>
   for (unsigned near = X.overlap_mask_in<Wide>(x, y_box); near != 0; near &= near - 1) {
     const std::size_t i = xb + static_cast<std::size_t>(std::countr_zero(near));
     unsigned m = Y.overlap_mask_in<Wide>(y, X.box(i));
-    // Framed: first the extents in the operands' common frame (pair020:
-    // most of the pairs the boxes leave).
+    // Framed: first the extents in the operands' common frame (EMBER cases
+    // 582 and 16: a sliver operand inside the other).
     if constexpr (Framed)
       if (m != 0) m &= ~ys.frame->apart_mask_in<Wide>(y, xs.frame->extent(i));
     // Boxes that meet, diagonal extents that do not (the bunny pair: a third
