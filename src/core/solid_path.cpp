@@ -153,6 +153,11 @@ bool nodes_may_meet(const Side& as, std::size_t a, const Side& bs, std::size_t b
   return true;
 }
 
+/// The same, with the frame's test where the operands have one.
+bool nodes_may_meet(const Side& as, std::size_t a, const Side& bs, std::size_t b) {
+  return as.frame ? nodes_may_meet<true>(as, a, bs, b) : nodes_may_meet<false>(as, a, bs, b);
+}
+
 /// Which side of a node pair to descend: the one with more levels below
 /// (node sizes stay alike); none when both are leaves.
 bool descend_a(const TriangleTree& A, const TriangleTree& B, const NodePair& v) {
@@ -236,8 +241,7 @@ void meeting_pairs(const GridTriangles& grid, const Side& as, const Side& bs, co
   if (stop.load(std::memory_order_relaxed) || work.over.load(std::memory_order_relaxed)) return;
   const auto child = [&](std::size_t c) {
     const NodePair w = split_a ? NodePair{2 * v.a + 1 + c, v.b, v.da + 1, v.db} : NodePair{v.a, 2 * v.b + 1 + c, v.da, v.db + 1};
-    if (as.frame ? nodes_may_meet<true>(as, w.a, bs, w.b) : nodes_may_meet<false>(as, w.a, bs, w.b))
-      meeting_pairs(grid, as, bs, w, sink, work, stop, wide);
+    if (nodes_may_meet(as, w.a, bs, w.b)) meeting_pairs(grid, as, bs, w, sink, work, stop, wide);
   };
   tbb::parallel_invoke([&] { child(0); }, [&] { child(1); });
 }
@@ -285,8 +289,7 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
         as.frame = &*a_frame;
         bs.frame = &*b_frame;
       }
-      if (!(as.frame && as.frame->nodes_apart(0, *bs.frame, 0)))
-        meeting_pairs(grid, as, bs, NodePair{0, 0, 0, 0}, sink, work, stop, wide);
+      if (nodes_may_meet(as, 0, bs, 0)) meeting_pairs(grid, as, bs, NodePair{0, 0, 0, 0}, sink, work, stop, wide);
     }
   Partners p;
   if (work.over.load()) {
