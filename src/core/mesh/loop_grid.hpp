@@ -39,19 +39,35 @@ class LoopGrid {
     }
     side_ = side;
     start_.assign(static_cast<std::size_t>(side) * side + 1, 0);
-    std::vector<std::uint32_t> cell(n);
+    cell_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      cell[i] = cell_of(at(i));
-      ++start_[cell[i] + 1];
+      cell_[i] = cell_of(at(i));
+      ++start_[cell_[i] + 1];
     }
     for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
     items_.resize(n);
-    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) items_[fill[cell[i]]++] = static_cast<std::uint32_t>(i);
+    slot_.resize(n);
+    end_.assign(start_.begin(), start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      slot_[i] = end_[cell_[i]]++;
+      items_[slot_[i]] = static_cast<std::uint32_t>(i);
+    }
+  }
+
+  /// Takes point i out of its cell (the ear clipper's clipped vertices:
+  /// the grid had kept offering them, ~35 M of case 582's instructions).
+  /// The last point of the cell takes its slot; `any` does not depend on
+  /// the order in which a cell offers its points.
+  void remove(std::uint32_t i) {
+    const std::uint32_t last = --end_[cell_[i]], moved = items_[last];
+    items_[slot_[i]] = moved;
+    slot_[moved] = slot_[i];
+    items_[last] = i;
+    slot_[i] = last;
   }
 
   /// Whether f(i) holds for some point i offered for the box [lo, hi]: every
-  /// point within 2^-30 of the box's magnitude of it along the grid's axes is
+  /// point not removed within 2^-30 of the box's magnitude of it along the grid's axes is
   /// offered (some others too). The ear test's double filter keeps points
   /// within 2^-39 (triangulate.cpp), and the grid's cell index is monotone
   /// in the coordinate (rounded subtraction and multiplication are), so the
@@ -68,7 +84,7 @@ class LoopGrid {
     for (int v = first[1]; v <= last[1]; ++v)
       for (int u = first[0]; u <= last[0]; ++u) {
         const std::size_t c = static_cast<std::size_t>(v) * side_ + u;
-        for (std::uint32_t s = start_[c]; s < start_[c + 1]; ++s)
+        for (std::uint32_t s = start_[c]; s < end_[c]; ++s)
           if (f(items_[s])) return true;
       }
     return false;
@@ -87,7 +103,8 @@ class LoopGrid {
   std::array<int, 2> axis_{};
   std::array<double, 2> origin_{}, scale_{};
   int side_ = 1;
-  std::vector<std::uint32_t> start_, items_;
+  std::vector<std::uint32_t> start_, end_;  // a cell's points: items_[start_[c], end_[c])
+  std::vector<std::uint32_t> items_, slot_, cell_;  // slot_[i]: i's place in items_; cell_[i]: its cell
 };
 
 }  // namespace ember::core

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <optional>
 #include <span>
+#include <type_traits>
 
 #include "core/mesh/loop_grid.hpp"
 #include "core/mesh/mesh_output.hpp"
@@ -192,9 +193,21 @@ struct EarBox {
   std::array<double, 3> lo, hi;
 };
 
+/// An EarBox with its slack worked out too, for long loops, whose ears are
+/// each tested against many vertices: a vertex within the box's magnitude
+/// m (|x| <= m) has slack 2^-40 m, so it is compared against lo - 2^-40 m
+/// and hi + 2^-40 m precomputed (the same comparisons as box_excludes'
+/// general formula); short loops test an ear against few vertices and
+/// would pay the set-up for nothing.
+struct SlackedEarBox : EarBox {
+  std::array<double, 3> m, slo, shi;
+};
+
 /// The vertices an ear a b c must not hold, offered to f until it says
 /// true: every vertex now in the loop but a, b and c, walking round it.
 struct WalkRound {
+  using Box = EarBox;
+  void removed(std::uint32_t) const {}
   template <typename F>
   [[gnu::always_inline]] bool any(std::span<const EarNode> node, std::uint32_t a, std::uint32_t, std::uint32_t c,
                                   const EarBox&, F&& f) const {
@@ -205,18 +218,18 @@ struct WalkRound {
 };
 
 /// The same for long loops, through a LoopGrid of the loop's vertices (each
-/// walk had cost O(n)): those in the cells of the ear's box, still in the
-/// loop; the caller's double filter and exact tests decide as before, so
+/// walk had cost O(n)): those in the cells of the ear's box (clipped
+/// vertices leave their cells); the caller's double filter and exact tests decide as before, so
 /// the same ears are clipped.
 struct FromGrid {
-  const Ctx& k;
-  std::span<const std::uint32_t> loop;
-  LoopGrid grid;
+  using Box = SlackedEarBox;
+  LoopGrid& grid;
+  /// A clipped vertex leaves its cell, so later ears no longer offer it.
+  void removed(std::uint32_t x) const { grid.remove(x); }
   template <typename F>
-  bool any(std::span<const EarNode> node, std::uint32_t a, std::uint32_t b, std::uint32_t c, const EarBox& box,
+  bool any(std::span<const EarNode>, std::uint32_t a, std::uint32_t b, std::uint32_t c, const EarBox& box,
            F&& f) const {
-    return grid.any(box.lo, box.hi,
-                    [&](std::uint32_t x) { return x != a && x != b && x != c && !node[x].removed && f(x); });
+    return grid.any(box.lo, box.hi, [&](std::uint32_t x) { return x != a && x != b && x != c && f(x); });
   }
 };
 
@@ -228,14 +241,22 @@ struct FromGrid {
 template <typename Others>
 bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarNode> node,
                std::span<EarCandidate> heap, const Others& others, std::vector<std::array<std::uint32_t, 3>>& out) {
+  using Box = typename Others::Box;
+  constexpr bool kSlacked = std::is_same_v<Box, SlackedEarBox>;
   const std::size_t before = out.size();
   const std::uint32_t size = static_cast<std::uint32_t>(loop.size());
   std::size_t n = size;
   for (std::uint32_t i = 0; i < size; ++i) node[i] = {i == 0 ? size - 1 : i - 1, i + 1 == size ? 0 : i + 1, 0, false};
   // Conservative double boxes: Point::f errs < 8 ulp; 2^-40 relative covers it.
-  auto box_excludes = [&](const EarBox& box, std::size_t x) {
+  auto box_excludes = [&](const Box& box, std::size_t x) {
     for (int axis = 0; axis < 3; ++axis) {
       const double lo = box.lo[axis], hi = box.hi[axis], fx = k.pt(loop[x]).f[axis];
+      if constexpr (kSlacked) {
+        if (std::fabs(fx) <= box.m[axis]) {
+          if (fx < box.slo[axis] || fx > box.shi[axis]) return true;
+          continue;
+        }
+      }
       const double slack = 0x1p-40 * std::max({std::fabs(lo), std::fabs(hi), std::fabs(fx)});
       if (fx < lo - slack || fx > hi + slack) return true;
     }
@@ -244,11 +265,16 @@ bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarN
   auto is_ear = [&](std::uint32_t b) __attribute__((always_inline)) {
     const std::uint32_t a = node[b].prev, c = node[b].next;
     if (k.orient(loop[a], loop[b], loop[c]) <= 0) return false;
-    EarBox box;
+    Box box;
     for (int axis = 0; axis < 3; ++axis) {
       const double fa = k.pt(loop[a]).f[axis], fb = k.pt(loop[b]).f[axis], fc = k.pt(loop[c]).f[axis];
       box.lo[axis] = std::min({fa, fb, fc});
       box.hi[axis] = std::max({fa, fb, fc});
+      if constexpr (kSlacked) {
+        box.m[axis] = std::max(std::fabs(box.lo[axis]), std::fabs(box.hi[axis]));
+        box.slo[axis] = box.lo[axis] - 0x1p-40 * box.m[axis];
+        box.shi[axis] = box.hi[axis] + 0x1p-40 * box.m[axis];
+      }
     }
     // x, another vertex of the loop now, lies in the closed triangle a b c.
     return !others.any(node, a, b, c, box, [&](std::uint32_t x) __attribute__((always_inline)) {
@@ -300,6 +326,7 @@ bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarN
     node[a].next = d;
     node[d].prev = a;
     node[b].removed = true;
+    others.removed(b);
     --n;
     push(a);
     push(d);
@@ -333,8 +360,8 @@ bool triangulate_loop(std::span<const std::uint32_t> loop, const Plane& plane, c
   std::vector<EarNode> node(loop.size());
   std::vector<EarCandidate> heap(2 * loop.size());
   if (loop.size() < grid_from) return clip_ears(k, loop, node, heap, WalkRound{}, out);
-  const FromGrid grid{k, loop, LoopGrid(loop.size(), [&](std::size_t i) -> const std::array<double, 3>& { return k.pt(loop[i]).f; })};
-  return clip_ears(k, loop, node, heap, grid, out);
+  LoopGrid grid(loop.size(), [&](std::size_t i) -> const std::array<double, 3>& { return k.pt(loop[i]).f; });
+  return clip_ears(k, loop, node, heap, FromGrid{grid}, out);
 }
 
 bool triangulate_region(const Regions& regions, std::uint32_t region, const OutputVertices& verts,
