@@ -152,7 +152,11 @@ void FrameBoxes::build_grid() {
     for (std::size_t i = 0; i < n; ++i) centre[axis][i] = 0.5 * (lo_[axis + 1][i] + hi_[axis + 1][i]);
     std::sort(centre[axis].begin(), centre[axis].end());
   }
-  for (int k = kMaxCells;; k /= 2) {
+  // A grid finer than about 2 sqrt(n) cells per axis leaves most cells of a
+  // small leaf empty and its polygons spanning many: start no finer.
+  const int first = std::clamp(static_cast<int>(std::bit_floor(static_cast<unsigned>(2 * std::sqrt(double(n))))),
+                               kMinCells, kMaxCells);
+  for (int k = first;; k /= 2) {
     for (int axis = 0; axis < 2; ++axis) {
       std::vector<double>& cuts = cuts_[axis];
       cuts.clear();
