@@ -444,10 +444,10 @@ struct LeafIndex {
 };
 
 /// Leaves over this size get the pile filters (approximations, frame boxes,
-/// the frame grid). They were meant for piles (thousands of polygons) and
-/// started at 256, but a leaf of the usual size (up to leaf_size polygons,
-/// then 64) is already worth them: gather is quadratic in the leaf, the
-/// set-up linear.
+/// the frame grid); "pile leaf" in this file means such a leaf. The filters
+/// were meant for piles (thousands of polygons) and started at 256, but a
+/// leaf of the usual size (then up to 64 polygons) is already worth them:
+/// gather is quadratic in the leaf, the set-up linear.
 /// With 16 the general path (--no-solid-check, callgrind, whole run, union)
 /// took 20% fewer instructions on pair003, 12% on EMBER case 16, 10% on
 /// pair018, and 22% on EMBER case 396 (default options: a self-intersecting

@@ -219,8 +219,8 @@ struct WalkRound {
 
 /// The same for long loops, through a LoopGrid of the loop's vertices (each
 /// walk had cost O(n)): those in the cells of the ear's box (clipped
-/// vertices leave their cells); the caller's double filter and exact tests decide as before, so
-/// the same ears are clipped.
+/// vertices leave their cells); the caller's double filter and exact tests
+/// decide as before, so the same ears are clipped.
 struct FromGrid {
   using Box = SlackedEarBox;
   LoopGrid& grid;
