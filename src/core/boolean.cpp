@@ -163,8 +163,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   Quantizer q;
   arena.execute([&] {
     core::validate_operands(operands);
-    q = core::fit_used_vertices(operands);
-    gi = core::to_grid(operands, q);
+    const core::UsedVertices used = core::used_vertices(operands);
+    q = core::fit_used_vertices(operands, used);
+    gi = core::to_grid(operands, q, used);
     result.stats.grid_step = q.grid_spacing();
     result.stats.operands.resize(operands.size());
     // Independent: side by side for small inputs (core::side_by_side; an

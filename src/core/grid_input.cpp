@@ -118,7 +118,27 @@ std::string format_step(double step) {
 
 }  // namespace
 
-Quantizer fit_used_vertices(std::span<const Mesh> operands) {
+UsedVertices used_vertices(std::span<const Mesh> operands) {
+  UsedVertices used(operands.size());
+  // Operand by operand: each pass is parallel over the operand's indices.
+  for (std::size_t o = 0; o < operands.size(); ++o) {
+    const Mesh& m = operands[o];
+    std::vector<std::uint8_t> is_used(m.vertices.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.indices.size(), 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        // Several faces share a vertex: every writer stores the same 1.
+                        for (std::size_t i = r.begin(); i != r.end(); ++i)
+                          std::atomic_ref<std::uint8_t>(is_used[m.indices[i]]).store(1, std::memory_order_relaxed);
+                      });
+    for (std::uint32_t v = 0; v < is_used.size(); ++v)
+      if (is_used[v]) used[o].push_back(v);
+  }
+  return used;
+}
+
+Quantizer fit_used_vertices(std::span<const Mesh> operands) { return fit_used_vertices(operands, used_vertices(operands)); }
+
+Quantizer fit_used_vertices(std::span<const Mesh> operands, const UsedVertices& used) {
   struct Bounds {
     Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     void add(const Vec3d& p) {
@@ -133,14 +153,18 @@ Quantizer fit_used_vertices(std::span<const Mesh> operands) {
   };
   Bounds all;
   bool any = false;
-  for (const Mesh& m : operands) {
-    if (m.indices.empty()) continue;
+  for (std::size_t o = 0; o < operands.size(); ++o) {
+    const Mesh& m = operands[o];
+    const std::vector<std::uint32_t>& u = used[o];
+    if (u.empty()) continue;
     any = true;
     // Min and max are exact and order-free, so the split does not matter.
+    // Over the used vertices once each (not once per corner: a closed
+    // mesh has about six corners per vertex), in index order.
     all.add(tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, m.indices.size(), 4096), Bounds{},
+        tbb::blocked_range<std::size_t>(0, u.size(), 4096), Bounds{},
         [&](const tbb::blocked_range<std::size_t>& r, Bounds b) {
-          for (std::size_t i = r.begin(); i != r.end(); ++i) b.add(m.vertices[m.indices[i]]);
+          for (std::size_t i = r.begin(); i != r.end(); ++i) b.add(m.vertices[u[i]]);
           return b;
         },
         [](Bounds a, const Bounds& b) {
@@ -157,21 +181,13 @@ namespace {
 /// unset: they may lie outside the fitted box).
 struct GridVertices {
   std::vector<IntPoint> pos;
-  std::vector<std::uint32_t> used;  ///< the used vertex indices, increasing
+  std::span<const std::uint32_t> used;  ///< the used vertex indices, increasing (used_vertices)
 };
 
-GridVertices quantize_used(const Mesh& m, const Quantizer& q) {
-  std::vector<std::uint8_t> is_used(m.vertices.size(), 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.indices.size(), 4096),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      // Several faces share a vertex: every writer stores the same 1.
-                      for (std::size_t i = r.begin(); i != r.end(); ++i)
-                        std::atomic_ref<std::uint8_t>(is_used[m.indices[i]]).store(1, std::memory_order_relaxed);
-                    });
+GridVertices quantize_used(const Mesh& m, const Quantizer& q, std::span<const std::uint32_t> used) {
   GridVertices g;
   g.pos.resize(m.vertices.size());
-  for (std::uint32_t v = 0; v < is_used.size(); ++v)
-    if (is_used[v]) g.used.push_back(v);
+  g.used = used;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.used.size(), 2048),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i)
@@ -266,6 +282,10 @@ void triangulate_faces(const Mesh& m, std::uint32_t o, const GridVertices& g, co
 }  // namespace
 
 GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q) {
+  return to_grid(operands, q, used_vertices(operands));
+}
+
+GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q, const UsedVertices& used) {
   GridInput gi;
   gi.lo = {Quantizer::kLimit, Quantizer::kLimit, Quantizer::kLimit};
   gi.hi = {-Quantizer::kLimit, -Quantizer::kLimit, -Quantizer::kLimit};
@@ -279,7 +299,7 @@ GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q) {
   gi.vertex_count.resize(operands.size());
   std::vector<std::array<std::array<std::int64_t, 3>, 2>> box(operands.size(), {gi.lo, gi.hi});
   const auto chain = [&](std::size_t o) {
-    const GridVertices g = quantize_used(operands[o], q);
+    const GridVertices g = quantize_used(operands[o], q, used[o]);
     bound(g, box[o][0], box[o][1]);
     std::vector<std::uint32_t> id;
     gi.vertex_count[o] = weld_grid_vertices(g, id);

@@ -41,9 +41,16 @@ struct GridInput {
   std::array<std::int64_t, 3> lo{}, hi{};  ///< bounds of all grid vertices
 };
 
+/// Per operand, the indices of the vertices its faces use, increasing. The
+/// operands must have passed validation (indices in range).
+using UsedVertices = std::vector<std::vector<std::uint32_t>>;
+UsedVertices used_vertices(std::span<const Mesh> operands);
+
 /// The quantization map fitted to the vertices that faces use (the bounding
 /// box of all operands together), computed in parallel. The operands must
-/// have passed validation (indices in range, finite coordinates).
+/// have passed validation (indices in range, finite coordinates); `used` is
+/// their used_vertices (the overload without computes it).
+Quantizer fit_used_vertices(std::span<const Mesh> operands, const UsedVertices& used);
 Quantizer fit_used_vertices(std::span<const Mesh> operands);
 
 /// Below this many triangles in all, the set-up runs the operands' chains
@@ -59,6 +66,8 @@ inline bool side_by_side(const GridInput& gi) { return gi.triangles.size() < kSi
 /// parallel (run it inside the Boolean's task arena). A face of n corners
 /// becomes n - 2 triangles, so face f's triangles start at
 /// face_offsets[f] - 2 f and the layout does not depend on scheduling.
+/// `used`: the operands' used_vertices (the overload without computes it).
+GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q, const UsedVertices& used);
 GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q);
 
 /// What the grid did to the input triangle (a, b, c) whose grid corners

@@ -44,6 +44,25 @@ TEST(BooleanApi, BadFaceIndicesThrow) {
   EXPECT_THROW(boolean({offs}, Op::Union), Error);
 }
 
+// Each kind of bad face is named (the validation checks every face in two
+// flat passes and searches per face only for the message).
+TEST(BooleanApi, BadFacesAreNamed) {
+  const Mesh a = box({0, 0, 0}, {1, 1, 1});
+  const auto message = [&](const Mesh& bad) { return error_message([&] { boolean({a, bad}, Op::Union); }); };
+  Mesh index = a;
+  index.indices[7] = 8;  // face 2, one past the last vertex
+  EXPECT_NE(message(index).find("operand 1: face 2 uses vertex index 8, but the mesh has 8 vertices"), std::string::npos)
+      << message(index);
+  Mesh two = a;  // face 0 gives its third corner to face 1, which has 4
+  two.face_offsets[1] = 2;
+  EXPECT_NE(message(two).find("operand 1: face 0 has 2 vertices; faces need at least 3"), std::string::npos)
+      << message(two);
+  Mesh decreasing = a;  // face 3 ends before it starts
+  decreasing.face_offsets[4] = 8;
+  EXPECT_NE(message(decreasing).find("operand 1: face_offsets must not decrease (face 3)"), std::string::npos)
+      << message(decreasing);
+}
+
 TEST(BooleanApi, MinKOutOfRangeThrows) {
   Mesh a = box({0, 0, 0}, {2, 2, 2}), b = box({1, 1, 1}, {3, 3, 3});
   EXPECT_THROW(boolean({a, b}, Op::AtLeastK, with_min_k(0)), Error);
