@@ -136,7 +136,9 @@ UsedVertices used_vertices(std::span<const Mesh> operands) {
   return used;
 }
 
-Quantizer fit_used_vertices(std::span<const Mesh> operands) { return fit_used_vertices(operands, used_vertices(operands)); }
+Quantizer fit_used_vertices(std::span<const Mesh> operands) {
+  return fit_used_vertices(operands, used_vertices(operands));
+}
 
 Quantizer fit_used_vertices(std::span<const Mesh> operands, const UsedVertices& used) {
   struct Bounds {

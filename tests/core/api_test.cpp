@@ -51,7 +51,8 @@ TEST(BooleanApi, BadFacesAreNamed) {
   const auto message = [&](const Mesh& bad) { return error_message([&] { boolean({a, bad}, Op::Union); }); };
   Mesh index = a;
   index.indices[7] = 8;  // face 2, one past the last vertex
-  EXPECT_NE(message(index).find("operand 1: face 2 uses vertex index 8, but the mesh has 8 vertices"), std::string::npos)
+  EXPECT_NE(message(index).find("operand 1: face 2 uses vertex index 8, but the mesh has 8 vertices"),
+            std::string::npos)
       << message(index);
   Mesh two = a;  // face 0 gives its third corner to face 1, which has 4
   two.face_offsets[1] = 2;
