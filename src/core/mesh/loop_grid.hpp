@@ -68,8 +68,9 @@ class LoopGrid {
 
   /// Whether f(i) holds for some point i offered for the box [lo, hi]: every
   /// point not removed that lies within 2^-30 of the box's magnitude of it
-  /// along the grid's axes is offered (some others too). The ear test's double filter keeps points
-  /// within 2^-39 (triangulate.cpp), and the grid's cell index is monotone
+  /// along the grid's axes is offered (some others too). The ear test's
+  /// double filter keeps points within 2^-39 (triangulate.cpp), and the
+  /// grid's cell index is monotone
   /// in the coordinate (rounded subtraction and multiplication are), so the
   /// widened box's cells hold every point the filter keeps.
   template <typename F>
