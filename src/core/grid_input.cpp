@@ -136,10 +136,6 @@ UsedVertices used_vertices(std::span<const Mesh> operands) {
   return used;
 }
 
-Quantizer fit_used_vertices(std::span<const Mesh> operands) {
-  return fit_used_vertices(operands, used_vertices(operands));
-}
-
 Quantizer fit_used_vertices(std::span<const Mesh> operands, const UsedVertices& used) {
   struct Bounds {
     Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
@@ -282,10 +278,6 @@ void triangulate_faces(const Mesh& m, std::uint32_t o, const GridVertices& g, co
 }
 
 }  // namespace
-
-GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q) {
-  return to_grid(operands, q, used_vertices(operands));
-}
 
 GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q, const UsedVertices& used) {
   GridInput gi;

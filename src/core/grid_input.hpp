@@ -49,9 +49,8 @@ UsedVertices used_vertices(std::span<const Mesh> operands);
 /// The quantization map fitted to the vertices that faces use (the bounding
 /// box of all operands together), computed in parallel. The operands must
 /// have passed validation (indices in range, finite coordinates); `used` is
-/// their used_vertices (the overload without computes it).
+/// their used_vertices (computed once, shared with to_grid).
 Quantizer fit_used_vertices(std::span<const Mesh> operands, const UsedVertices& used);
-Quantizer fit_used_vertices(std::span<const Mesh> operands);
 
 /// Below this many triangles in all, the set-up runs the operands' chains
 /// (and the audit beside the edge matching) side by side: each chain is
@@ -66,9 +65,8 @@ inline bool side_by_side(const GridInput& gi) { return gi.triangles.size() < kSi
 /// parallel (run it inside the Boolean's task arena). A face of n corners
 /// becomes n - 2 triangles, so face f's triangles start at
 /// face_offsets[f] - 2 f and the layout does not depend on scheduling.
-/// `used`: the operands' used_vertices (the overload without computes it).
+/// `used`: the operands' used_vertices.
 GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q, const UsedVertices& used);
-GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q);
 
 /// What the grid did to the input triangle (a, b, c) whose grid corners
 /// have the grid normal g: -1 it had no area to begin with (|n| <= 2^-40

@@ -20,8 +20,9 @@ namespace {
 
 /// The set-up's manifold bits of every triangle of `ops`, in GridInput order.
 std::vector<std::uint8_t> manifold_bits(std::span<const Mesh> ops) {
-  const Quantizer q = core::fit_used_vertices(ops);
-  const core::GridInput gi = core::to_grid(ops, q);
+  const core::UsedVertices used = core::used_vertices(ops);
+  const Quantizer q = core::fit_used_vertices(ops, used);
+  const core::GridInput gi = core::to_grid(ops, q, used);
   return core::match_edges(gi).manifold;
 }
 
