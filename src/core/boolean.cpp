@@ -21,6 +21,7 @@
 #include "core/direct_mesh.hpp"
 #include "core/grid_input.hpp"
 #include "core/input_soup.hpp"
+#include "core/root_problem.hpp"
 #include "core/indicator.hpp"
 #include "core/mesh/mesh_output.hpp"
 #include "core/solve.hpp"
@@ -156,9 +157,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   // Every step of the set-up is parallel and its result independent of the
   // split: validation, one quantization map for all operands (fitted to the
   // vertices faces use), grid triangles with welded vertex ids, the audit of
-  // the rounding, closedness, and the root soup.
+  // the rounding, closedness, and the grid triangles by id.
   core::GridInput gi;
-  core::InputSoup in;
+  core::InputTriangles in;
   core::EdgeMatching edges;
   Quantizer q;
   arena.execute([&] {
@@ -178,7 +179,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       audit();
       match();
     }
-    in = core::build_soup(gi, edges);
+    in = core::build_grid_triangles(gi, edges);
   });
   for (const OperandReport& r : result.stats.operands) {
     result.stats.collapsed_triangles += r.collapsed_triangles;
@@ -212,7 +213,6 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     if (!options.allow_open) throw Error(msg + "; repair the mesh or allow open inputs (CLI: --allow-open)");
     result.warnings.push_back(msg + "; proceeding as requested, the result may have holes");
   }
-  core::Soup& soup = in.soup;
   core::GridTriangles& grid = in.grid;
   const std::span<const Provenance> sources = in.sources;
 
@@ -221,16 +221,17 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   const auto setup_done = std::chrono::steady_clock::now();
   result.stats.setup_ms = ms_between(start, setup_done);
   auto proved = setup_done;
-  if (!soup.empty()) {
-    core::Subproblem root;
+  if (!grid.corners.empty()) {
+    core::Subproblem shell;
     for (int a = 0; a < 3; ++a) {
-      root.box.lo[a] = lo[a] - 1;  // padding keeps the reference point off all geometry
-      root.box.hi[a] = hi[a] + 1;
-      root.ref.num[a] = 2 * root.box.lo[a] + 1;  // lo + 1/2: inside the box, outside everything
+      shell.box.lo[a] = lo[a] - 1;  // padding keeps the reference point off all geometry
+      shell.box.hi[a] = hi[a] + 1;
+      shell.ref.num[a] = 2 * shell.box.lo[a] + 1;  // lo + 1/2: inside the box, outside everything
     }
-    root.ref.shift = 1;
-    root.ref_w.assign(operands.size(), 0);
-    root.soup = std::move(soup);
+    shell.ref.shift = 1;
+    shell.ref_w.assign(operands.size(), 0);
+    // Its soup is built where the general path or a proof's scan needs it.
+    core::RootProblem root(std::move(shell), grid, in.operand_begin);
     core::SolveContext ctx;
     ctx.operands = operands.size();
     ctx.inside = [&indicator](const core::Wnv& w) { return indicator(WindingVector(w.data(), w.size())); };
@@ -252,9 +253,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     bool may_all_be_solid = options.solid_path;
     for (std::size_t o = 0; o < operands.size(); ++o)
       may_all_be_solid &= ctx.solid[o] || (options.detect_solid && open[o] == 0);
-    if (may_all_be_solid)
-      if (std::optional<std::vector<std::uint32_t>> ranges = core::operand_ranges(root.soup, operands.size()))
-        arena.execute([&] { trees = core::build_operand_trees(std::move(*ranges), grid.corners); });
+    if (may_all_be_solid) arena.execute([&] { trees = core::build_operand_trees(in.operand_begin, grid.corners); });
     // The leaves' diagonal extents serve the two broad phases only (the
     // proof's contact searches, the partner search): freed when the last of
     // them ends, before the direct route's peak (32 bytes per input triangle).
@@ -284,7 +283,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       SolidRoute route;
       const std::atomic<bool> never{false};
       const std::atomic<bool>& stop = abandon ? *abandon : never;
-      const std::size_t n = root.soup.size();
+      const std::size_t n = grid.corners.size();
       const std::size_t budget = abandon ? core::kSpeculativePartnersPerTriangle * n + core::kSpeculativeAllowance : SIZE_MAX;
       const core::Partners partners = core::find_partners(grid, *trees, n, stop, budget);
       if (partners.gave_up) {
@@ -294,9 +293,9 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       broad_phase_done();
       if (stop.load()) return route;
       if (direct_allowed)
-        route.mesh = core::direct_solid_mesh(root.soup, grid, root.box, c, *trees, partners, q, sources, *topology, stop);
+        route.mesh = core::direct_solid_mesh(grid, root.box(), c, *trees, partners, q, sources, *topology, stop);
       if (!route.mesh && !stop.load())
-        route.polys = core::solve_solid(root.soup, grid, root.box, c, *trees, abandon, &partners);
+        route.polys = core::solve_solid(grid, root.box(), c, *trees, abandon, &partners);
       return route;
     };
     SolidRoute speculative;
@@ -317,8 +316,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
         const auto prove = [&] {
           tbb::parallel_for(std::size_t{0}, unproven.size(), [&](std::size_t k) {
             const std::uint32_t o = unproven[k];
-            findings[k] = trees ? core::check_solid(root, grid, o, &trees->tree[o], &disproved, &trees->diagonals[o])
-                                : core::check_solid(root, grid, o, nullptr, &disproved);
+            findings[k] = core::check_solid(root, grid, o, trees ? &*trees : nullptr, &disproved);
             if (findings[k].verdict != core::SolidVerdict::Solid) disproved = true;
           });
           if (trees) broad_phase_done();
@@ -364,7 +362,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
           return;
         }
       }
-      core::SolveOutput solved = core::solve(std::move(root), ctx);
+      core::SolveOutput solved = core::solve(root.take(), ctx);
       polys = std::move(solved.polys);
       result.stats.merged_triangles = core::merge_whole_triangles(polys);
       core::expand_path_pieces(polys, solved.paths);

@@ -15,18 +15,18 @@
 
 namespace ember::core {
 
-std::optional<MeshOutput> direct_solid_mesh(const Soup& soup, const GridTriangles& grid, const Box& box,
+std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box& box,
                                             const SolveContext& ctx, const OperandTrees& trees,
                                             const Partners& partners, const Quantizer& q,
                                             std::span<const Provenance> sources, const InputTopology& topology,
                                             const std::atomic<bool>& stop) {
   if (ctx.operands != 2 || topology.operand_base.size() != 3) return std::nullopt;
   const auto clock = std::chrono::steady_clock::now();
-  const std::size_t n = soup.size();
+  const std::size_t n = grid.corners.size();
   std::vector<std::uint32_t> operand_of(n);
   std::vector<std::uint32_t> touched;
   for (std::uint32_t i = 0; i < n; ++i) {
-    operand_of[i] = soup[i].operand;
+    operand_of[i] = i < trees.begin[1] ? 0 : 1;  // two operands (above)
     if (partners.touched(i)) touched.push_back(i);
   }
   // Each meeting pair's chord once, by its smaller triangle x (computing it
@@ -94,7 +94,7 @@ std::optional<MeshOutput> direct_solid_mesh(const Soup& soup, const GridTriangle
         }
   });
   if (failed.load() || stop.load()) return std::nullopt;
-  std::optional<std::vector<OutputPolygon>> untouched = solid_untouched(soup, grid, box, ctx, trees, partners, stop);
+  std::optional<std::vector<OutputPolygon>> untouched = solid_untouched(grid, box, ctx, trees, partners, stop);
   if (!untouched) return std::nullopt;
 
   // One vertex per name: input vertices keep their global ids, crossing

@@ -1,4 +1,4 @@
-// Validation, closedness and the root soup (see input_soup.hpp).
+// Validation, closedness and the grid triangles by id (see input_soup.hpp).
 #include "core/input_soup.hpp"
 
 #include <tbb/blocked_range.h>
@@ -134,7 +134,7 @@ EdgeMatching match_edges(const GridInput& gi) {
   return m;
 }
 
-InputSoup build_soup(const GridInput& gi, const EdgeMatching& edges) {
+InputTriangles build_grid_triangles(const GridInput& gi, const EdgeMatching& edges) {
   const std::size_t n = gi.triangles.size();
   // Pass 1: which triangles have area (the exact grid normal is non-zero;
   // make_triangle decides the same).
@@ -159,11 +159,12 @@ InputSoup build_soup(const GridInput& gi, const EdgeMatching& edges) {
         return sum;
       },
       [](std::uint32_t a, std::uint32_t b) { return a + b; });
-  InputSoup in;
+  InputTriangles in;
   const std::size_t kept = id[n];
   in.dropped_degenerate = n - kept;
-  reserve_touched(in.soup, kept);
-  in.soup.resize(kept);
+  // GridInput holds the operands one after the other: so do the ids.
+  in.operand_begin.resize(gi.operand_begin.size());
+  for (std::size_t o = 0; o < gi.operand_begin.size(); ++o) in.operand_begin[o] = id[gi.operand_begin[o]];
   in.sources.resize(kept);
   in.grid.corners.resize(kept);
   in.grid.vertex_ids.resize(kept);
@@ -175,10 +176,7 @@ InputSoup build_soup(const GridInput& gi, const EdgeMatching& edges) {
       if (id[i + 1] == id[i]) continue;
       const GridTriangle& t = gi.triangles[i];
       const std::uint32_t k = id[i];
-      // Unbuilt (soup.hpp): it points at its corners, which live in the
-      // grid table for the whole Boolean. It has area: pass 1.
       in.grid.corners[k] = t.p;
-      in.soup[k] = unbuilt_triangle(in.grid.corners[k], k, t.operand);
       in.sources[k] = {t.operand, t.face};
       in.grid.vertex_ids[k] = gi.vertex_ids[i];
       in.grid.manifold_edges[k] = edges.manifold[i];

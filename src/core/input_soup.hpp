@@ -1,6 +1,6 @@
 #pragma once
 // The Boolean's input stage after quantization (grid_input.hpp): validation
-// of the caller's meshes, closedness, and the soup the core solves. Every
+// of the caller's meshes, closedness, and the grid triangles the core solves. Every
 // step is parallel and its result independent of scheduling.
 #include <cstdint>
 #include <span>
@@ -35,19 +35,22 @@ struct EdgeMatching {
 };
 EdgeMatching match_edges(const GridInput& gi);
 
-/// The non-degenerate grid triangles as the root soup: ids in input order
-/// (the total order of coplanar overlaps), sources[id] their origin,
-/// grid.corners by id (the soup's unbuilt triangles point into it, so it must
-/// outlive the soup and the solve's output; the solid proof and
+/// The non-degenerate grid triangles, numbered in input order (the total
+/// order of coplanar overlaps): sources[id] their origin, grid.corners by id
+/// (the root soup's unbuilt triangles point into it, so it must outlive the
+/// soup and the solve's output; the solid proof, the solid path and
 /// merge_whole_triangles read it too), grid.vertex_ids by id (the solid
 /// proof's edge matching, the mesh stage's weld), grid.manifold_edges and
-/// grid.neighbors by id (from `edges`, in GridInput order).
-struct InputSoup {
-  Soup soup;
+/// grid.neighbors by id (from `edges`, in GridInput order), and each
+/// operand's range of ids. The root soup itself is built from them where it
+/// is needed (root_problem.hpp).
+struct InputTriangles {
   FillVector<Provenance> sources;
   GridTriangles grid;
+  /// Operand o's triangles are ids [operand_begin[o], operand_begin[o + 1]).
+  std::vector<std::uint32_t> operand_begin;
   std::size_t dropped_degenerate = 0;
 };
-InputSoup build_soup(const GridInput& gi, const EdgeMatching& edges);
+InputTriangles build_grid_triangles(const GridInput& gi, const EdgeMatching& edges);
 
 }  // namespace ember::core

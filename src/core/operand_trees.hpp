@@ -3,6 +3,7 @@
 // extents of its leaves (leaf_diagonals.hpp): built once, read by the solid
 // proof's contact search (each operand against itself), the solid path's
 // partner search (pairs of operands) and its traces.
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -18,6 +19,10 @@ struct OperandTrees {
   std::vector<std::uint32_t> begin;
   std::vector<TriangleTree> tree;
   std::vector<LeafDiagonals> diagonals;
+  /// The operand whose range holds triangle `id` (< begin.back()).
+  std::uint32_t operand_of(std::uint32_t id) const {
+    return static_cast<std::uint32_t>(std::upper_bound(begin.begin(), begin.end(), id) - begin.begin() - 1);
+  }
 };
 
 /// The trees of every operand's triangles: operand o's are triangles

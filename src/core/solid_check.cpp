@@ -9,8 +9,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <numeric>
 
 #include "core/contact_search.hpp"
+#include "core/operand_trees.hpp"
+#include "core/root_problem.hpp"
 #include "core/solid_trace.hpp"
 #include "core/vertex_stars.hpp"
 #include "ember/boolean.hpp"
@@ -136,10 +139,20 @@ std::vector<std::uint32_t> operand_members(const Soup& soup, std::uint32_t opera
 
 }  // namespace
 
-SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand,
-                         const TriangleTree* tree, std::atomic<bool>* intersecting, const LeafDiagonals* diagonals) {
-  const std::vector<std::uint32_t> members = operand_members(root.soup, operand);
+SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint32_t operand,
+                         const OperandTrees* trees, std::atomic<bool>* intersecting) {
+  // With the trees, the operand's triangles are its range of ids; without,
+  // the proof scans the soup anyway (below), so it is built now.
+  std::vector<std::uint32_t> members;
+  if (trees) {
+    members.resize(root.operand_begin()[operand + 1] - root.operand_begin()[operand]);
+    std::iota(members.begin(), members.end(), root.operand_begin()[operand]);
+  } else {
+    members = operand_members(root.with_soup().soup, operand);
+  }
   if (members.empty()) return {};
+  const TriangleTree* tree = trees ? &trees->tree[operand] : nullptr;
+  const LeafDiagonals* diagonals = trees ? &trees->diagonals[operand] : nullptr;
   // Counting the contacts (not just finding one) costs at most one full
   // search, the price of proving a solid operand; the count tells the user why.
   FillVector<ContactTriangle> tris(members.size());  // every entry written below
@@ -181,22 +194,24 @@ SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std:
   // tree, and its failed tree traces are not retried).
   const TriangleTree* own_tree = consecutive ? tree : nullptr;
   constexpr std::size_t kScanBudget = std::size_t{1} << 25;
-  const bool scans_affordable = reps.size() <= 8 || reps.size() * root.soup.size() <= kScanBudget;
+  const bool scans_affordable = reps.size() <= 8 || reps.size() * grid.corners.size() <= kScanBudget;
   if (!own_tree && !scans_affordable) return {SolidVerdict::TooComplex, 0, 0};
   std::vector<SolidVerdict> verdict(reps.size(), SolidVerdict::Solid);
   tbb::parallel_for(std::size_t{0}, reps.size(), [&](std::size_t c) {
-    const SoupPolygon& rep = root.soup[reps[c]];
+    // The soup's polygon for it (unbuilt, as every root polygon is here).
+    const SoupPolygon rep = unbuilt_triangle(grid.corners[reps[c]], reps[c], operand);
     int front = 0, back = 0;
     bool traced = false;
     if (own_tree) {
       TraceScratch sc;
       Polygon built;
-      traced = own_winding_from_outside(root.soup, *own_tree, members.front(), root.box, root.ref_w.size(),
+      traced = own_winding_from_outside(grid.corners, *own_tree, members.front(), root.box(), root.operands(),
                                         built_polygon(rep, built), operand, std::uint64_t{rep.id} << 20, front, back, sc);
     }
     if (!traced && scans_affordable) {
       Wnv w_front, w_back;
-      traced = classify_polygon(root, rep, w_front, w_back);
+      const Subproblem& full = root.with_soup();
+      traced = classify_polygon(full, full.soup[reps[c]], w_front, w_back);
       if (traced) front = w_front[operand], back = w_back[operand];
     }
     if (!traced) {

@@ -28,6 +28,8 @@
 namespace ember::core {
 
 class LeafDiagonals;
+class RootProblem;
+struct OperandTrees;
 
 enum class SolidVerdict {
   Solid,
@@ -40,7 +42,7 @@ enum class SolidVerdict {
 inline constexpr std::uint32_t kNoNeighbor = UINT32_MAX;
 
 /// The grid triangles behind the soup's polygons, indexed by polygon id.
-/// FillVectors (fill_vector.hpp): build_soup sizes them, then writes every
+/// FillVectors (fill_vector.hpp): build_grid_triangles sizes them, then writes every
 /// entry in parallel.
 struct GridTriangles {
   FillVector<std::array<IntPoint, 3>> corners;
@@ -67,18 +69,19 @@ struct SolidFinding {
   bool pairs_complete = true;  ///< self_intersecting_pairs is every pair (ContactSearchResult::complete)
 };
 
-/// Decides whether `operand` is solid. `root` is the whole problem (its soup
-/// holds every operand's polygons, polygon i has id i; its reference point is
-/// outside everything).
-/// `tree`, if given, is the operand's triangle tree and `diagonals` its
-/// leaves' extents (build_operand_trees).
+/// Decides whether `operand` is solid. `root` is the whole problem (its
+/// triangles are grid's, polygon i is triangle i; its reference point is
+/// outside everything); its soup is built (RootProblem::with_soup) only where
+/// a scan of it is needed: a proof without `trees`, or a trace through the
+/// tree that found no non-degenerate path.
+/// `trees`, if given, are the operands' triangle trees with their leaves'
+/// extents (build_operand_trees over root.operand_begin()).
 /// `intersecting`, if given, is set as soon as the search meets the first
 /// self-intersection, before the count is complete: the defaults' solid
 /// path, started alongside the proof on the premise that every operand is
 /// solid, stops on it (solve_solid's `abandon`) and frees its threads.
-SolidFinding check_solid(const Subproblem& root, const GridTriangles& grid, std::uint32_t operand,
-                         const TriangleTree* tree = nullptr, std::atomic<bool>* intersecting = nullptr,
-                         const LeafDiagonals* diagonals = nullptr);
+SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint32_t operand,
+                         const OperandTrees* trees = nullptr, std::atomic<bool>* intersecting = nullptr);
 
 /// A grid triangle prepared for the contact test: where its corners are,
 /// their welded ids (equal iff equal positions, within the triangles

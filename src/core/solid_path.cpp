@@ -321,13 +321,15 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
 
 namespace {
 
-/// The output form of t whole (unbuilt), or of one of its pieces.
-OutputPolygon output_of(const SoupPolygon& t, const Polygon* piece, bool flip) {
+/// The output form of grid triangle `id` (of `operand`) whole (unbuilt), or
+/// of one of its pieces.
+OutputPolygon output_of(const GridTriangles& grid, std::uint32_t id, std::uint32_t operand, const Polygon* piece,
+                        bool flip) {
   OutputPolygon out;
   if (piece) out.vertices.assign(piece->vertices.begin(), piece->vertices.end());
-  out.corners = t.corners;
-  out.id = t.id;
-  out.operand = t.operand;
+  out.corners = &grid.corners[id];
+  out.id = id;
+  out.operand = operand;
   out.flip = flip;
   out.whole_piece = !piece;
   return out;
@@ -377,10 +379,10 @@ std::uint32_t untouched_neighbour_along(const Polygon& f, const Polygon& t, cons
 /// Steps 2-4 of the solid path over the partners of step 1.
 class SolidSolver {
  public:
-  SolidSolver(const Soup& soup, const GridTriangles& grid, const Box& box, const SolveContext& ctx,
-              const OperandTrees& trees, const Partners& partners, const std::atomic<bool>& stop)
-      : soup_(soup), grid_(grid), ctx_(ctx), trees_(trees), partners_(partners), stop_(stop), operands_(ctx.operands),
-        tracer_{soup, trees, box, ctx.operands}, touched_(soup.size()) {
+  SolidSolver(const GridTriangles& grid, const Box& box, const SolveContext& ctx, const OperandTrees& trees,
+              const Partners& partners, const std::atomic<bool>& stop)
+      : grid_(grid), ctx_(ctx), trees_(trees), partners_(partners), stop_(stop), operands_(ctx.operands),
+        tracer_{grid.corners, trees, box, ctx.operands}, touched_(grid.corners.size()) {
     for (std::uint32_t i = 0; i < touched_.size(); ++i) touched_[i] = partners.touched(i);
     comps_ = untouched_components(grid, touched_);
   }
@@ -398,7 +400,7 @@ class SolidSolver {
         const std::uint32_t id = comps_.roots[k];
         const std::array<IntPoint, 3>& c = grid_.corners[id];
         assign_triangle(c[0], c[1], c[2], t);
-        if (!classify_from_outside(tracer_, t, soup_[id].operand, std::uint64_t{id} << 20, front, back, sc)) {
+        if (!classify_from_outside(tracer_, t, trees_.operand_of(id), std::uint64_t{id} << 20, front, back, sc)) {
           failed = true;
           break;
         }
@@ -447,7 +449,7 @@ class SolidSolver {
     // Written in parallel at offsets counted per block of ids (a serial
     // push_back of every kept triangle was most of a large, lightly touched
     // Boolean's solve, and slower at 2 threads than at 1).
-    const std::size_t n = soup_.size();
+    const std::size_t n = grid_.corners.size();
     const auto kept = [&](std::uint32_t i) { return !touched_[i] && keep[comps_.index[i]] != 0; };
     constexpr std::size_t kBlock = 4096;
     const std::size_t blocks = (n + kBlock - 1) / kBlock;
@@ -464,7 +466,7 @@ class SolidSolver {
         const auto id = static_cast<std::uint32_t>(i);
         if (!kept(id)) continue;
         OutputPolygon& o = out[slot++];
-        o = output_of(soup_[id], nullptr, keep[comps_.index[id]] == 2);
+        o = output_of(grid_, id, trees_.operand_of(id), nullptr, keep[comps_.index[id]] == 2);
         o.settled = std::none_of(grid_.neighbors[id].begin(), grid_.neighbors[id].end(),
                                  [&](std::uint32_t j) { return j == kNoNeighbor || touched_[j]; });
       }
@@ -522,7 +524,7 @@ class SolidSolver {
         cs.windings.get(m, cs.front, cs.back);
         cs.handover.record(f, cs.front, cs.back);
         bool flip = false;
-        if (emitted(cs.front, cs.back, flip)) out.push_back(output_of(soup_[id], whole ? nullptr : &f, flip));
+        if (emitted(cs.front, cs.back, flip)) out.push_back(output_of(grid_, id, o, whole ? nullptr : &f, flip));
       }
     }
     return true;
@@ -565,7 +567,7 @@ class SolidSolver {
     cs.partner_operands.clear();
     for (const std::uint32_t q : cs.cut.partners) {
       cs.partner_polys.push_back(&cs.cache.get(q));
-      cs.partner_operands.push_back(soup_[q].operand);
+      cs.partner_operands.push_back(trees_.operand_of(q));
     }
     cs.cut_handover.begin_triangle(t, cs.partner_polys, cs.partner_operands);
     return cs.cut_handover.spread(pieces, pw, [&](std::size_t m, Wnv& front, Wnv& back) {
@@ -633,7 +635,6 @@ class SolidSolver {
     return in_front != in_back;
   }
 
-  const Soup& soup_;
   const GridTriangles& grid_;
   const SolveContext& ctx_;
   const OperandTrees& trees_;
@@ -648,37 +649,26 @@ class SolidSolver {
 
 }  // namespace
 
-std::optional<std::vector<std::uint32_t>> operand_ranges(const Soup& soup, std::size_t operands) {
-  std::vector<std::uint32_t> begin(operands + 1, 0);
-  for (std::size_t i = 1; i < soup.size(); ++i)
-    if (soup[i].operand < soup[i - 1].operand) return std::nullopt;  // not grouped by operand
-  for (std::size_t o = 0, i = 0; o <= operands; ++o) {
-    while (i < soup.size() && soup[i].operand < o) ++i;
-    begin[o] = static_cast<std::uint32_t>(i);
-  }
-  return begin;
-}
-
-std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const GridTriangles& grid, const Box& box,
+std::optional<std::vector<OutputPolygon>> solve_solid(const GridTriangles& grid, const Box& box,
                                                       const SolveContext& ctx, const OperandTrees& trees,
                                                       const std::atomic<bool>* abandon, const Partners* found) {
   const std::atomic<bool> never{false};
   const std::atomic<bool>& stop = abandon ? *abandon : never;
   // 1. Which triangles another operand's triangles meet, and which.
   std::optional<Partners> own;
-  if (!found) own = find_partners(grid, trees, soup.size(), stop);
+  if (!found) own = find_partners(grid, trees, grid.corners.size(), stop);
   const Partners& partners = found ? *found : *own;
   if (stop.load()) return std::nullopt;
-  SolidSolver solver(soup, grid, box, ctx, trees, partners, stop);
+  SolidSolver solver(grid, box, ctx, trees, partners, stop);
   std::vector<std::vector<OutputPolygon>> touched_out;
   if (!solver.classify_components() || !solver.solve_touched(touched_out)) return std::nullopt;
   return solver.output(std::move(touched_out));
 }
 
-std::optional<std::vector<OutputPolygon>> solid_untouched(const Soup& soup, const GridTriangles& grid, const Box& box,
+std::optional<std::vector<OutputPolygon>> solid_untouched(const GridTriangles& grid, const Box& box,
                                                           const SolveContext& ctx, const OperandTrees& trees,
                                                           const Partners& partners, const std::atomic<bool>& stop) {
-  SolidSolver solver(soup, grid, box, ctx, trees, partners, stop);
+  SolidSolver solver(grid, box, ctx, trees, partners, stop);
   if (!solver.classify_components()) return std::nullopt;
   return solver.output({});
 }

@@ -89,17 +89,18 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
 inline constexpr std::size_t kSpeculativePartnersPerTriangle = 512;
 inline constexpr std::size_t kSpeculativeAllowance = std::size_t{1} << 16;
 
-/// The Boolean of the root soup (polygon i has id i, grid.corners[i] its
-/// corners; every operand solid in `ctx`; `trees` its operands' triangle
-/// trees, build_operand_trees over operand_ranges) inside the root box `box`, whose
-/// boundary no polygon touches. The pieces on the result's surface, in a
+/// The Boolean of the grid triangles (triangle i has corners
+/// grid.corners[i]; every operand solid in `ctx`; `trees` its operands'
+/// triangle trees, build_operand_trees over the operands' ranges of ids)
+/// inside the root box `box`, whose boundary no triangle touches. Reads no
+/// root soup (root_problem.hpp). The pieces on the result's surface, in a
 /// deterministic order (unbuilt whole triangles and explicit pieces; no
 /// paths). nullopt if some piece found no non-degenerate trace (the caller
 /// then solves on the subdivision instead), or if `abandon` was set: a run
 /// started before the proof of its premise ended stops early once the proof
 /// fails (boolean.cpp), checking the flag between steps and within them.
 /// `partners`, if given, are step 1's, already found (find_partners).
-std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const GridTriangles& grid, const Box& box,
+std::optional<std::vector<OutputPolygon>> solve_solid(const GridTriangles& grid, const Box& box,
                                                       const SolveContext& ctx, const OperandTrees& trees,
                                                       const std::atomic<bool>* abandon = nullptr,
                                                       const Partners* partners = nullptr);
@@ -108,12 +109,8 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const Soup& soup, const Gr
 /// (unbuilt, by id; `settled` as in solve_solid), classified by one trace
 /// per component. nullopt if a trace failed or `stop` was set. The direct
 /// route (direct_mesh.hpp) cuts the touched triangles itself.
-std::optional<std::vector<OutputPolygon>> solid_untouched(const Soup& soup, const GridTriangles& grid, const Box& box,
+std::optional<std::vector<OutputPolygon>> solid_untouched(const GridTriangles& grid, const Box& box,
                                                           const SolveContext& ctx, const OperandTrees& trees,
                                                           const Partners& partners, const std::atomic<bool>& stop);
-
-/// Operand o's polygons of the root soup are [begin[o], begin[o + 1]);
-/// nullopt if the soup does not list the operands in order.
-std::optional<std::vector<std::uint32_t>> operand_ranges(const Soup& soup, std::size_t operands);
 
 }  // namespace ember::core

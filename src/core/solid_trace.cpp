@@ -8,19 +8,21 @@ namespace ember::core {
 
 namespace {
 
-/// Calls visit(polygon, operand) for every triangle of `tree` that the
-/// segment can meet (tree box query, then the triangle's box and the
-/// line-miss filter), until visit returns false (false then). Tree item i is
-/// soup polygon first + i.
+/// Calls visit(polygon, operand) for every triangle of operand `operand`'s
+/// `tree` that the segment can meet (tree box query, then the triangle's
+/// box and the line-miss filter), until visit returns false (false then).
+/// Tree item i is grid triangle first + i: seen as the root soup's unbuilt
+/// polygon for it, the same box and filters (the soup itself is not built
+/// on the solid path, root_problem.hpp).
 template <typename Visit>
-bool for_each_met_in(const Soup& soup, const TriangleTree& tree, std::uint32_t first, const AxisSegment& seg,
-                     const Box32& query, TraceScratch& sc, Visit& visit) {
+bool for_each_met_in(std::span<const std::array<IntPoint, 3>> corners, const TriangleTree& tree, std::uint32_t first,
+                     std::uint32_t operand, const AxisSegment& seg, const Box32& query, TraceScratch& sc, Visit& visit) {
   bool ok = true;
   tree.for_each_overlapping(query, [&](std::uint32_t item) {
     if (!ok) return;
-    const SoupPolygon& p = soup[first + item];
+    const SoupPolygon p = unbuilt_triangle(corners[first + item], first + item, operand);
     if (box_disjoint(p, seg.lo, seg.hi) || line_clearly_misses(seg.line, seg.uv, p)) return;
-    ok = visit(built_polygon(p, sc.built), p.operand);
+    ok = visit(built_polygon(p, sc.built), operand);
   });
   return ok;
 }
@@ -70,7 +72,8 @@ bool classify_from_outside(const Tracer& tr, const Polygon& f, std::uint32_t own
   const auto met = [&](const AxisSegment& seg, auto&& visit) {
     const Box32 query = enclosing_box(seg.lo, seg.hi);
     for (std::size_t o = 0; o < tr.operands; ++o)
-      if (o != own && !for_each_met_in(tr.soup, tr.trees.tree[o], tr.trees.begin[o], seg, query, sc, visit))
+      if (o != own && !for_each_met_in(tr.corners, tr.trees.tree[o], tr.trees.begin[o], static_cast<std::uint32_t>(o),
+                                       seg, query, sc, visit))
         return false;
     return true;
   };
@@ -80,11 +83,11 @@ bool classify_from_outside(const Tracer& tr, const Polygon& f, std::uint32_t own
   return true;
 }
 
-bool own_winding_from_outside(const Soup& soup, const TriangleTree& tree, std::uint32_t first, const Box& box,
-                              std::size_t operands, const Polygon& f, std::uint32_t own, std::uint64_t seed,
-                              int& front, int& back, TraceScratch& sc) {
+bool own_winding_from_outside(std::span<const std::array<IntPoint, 3>> corners, const TriangleTree& tree,
+                              std::uint32_t first, const Box& box, std::size_t operands, const Polygon& f,
+                              std::uint32_t own, std::uint64_t seed, int& front, int& back, TraceScratch& sc) {
   const auto met = [&](const AxisSegment& seg, auto&& visit) {
-    return for_each_met_in(soup, tree, first, seg, enclosing_box(seg.lo, seg.hi), sc, visit);
+    return for_each_met_in(corners, tree, first, own, seg, enclosing_box(seg.lo, seg.hi), sc, visit);
   };
   Wnv w_front, w_back;
   if (!trace_from_outside(box, operands, f, seed, w_front, w_back, sc, met)) return false;

@@ -19,7 +19,7 @@ namespace ember::core {
 
 /// What every trace reads.
 struct Tracer {
-  const Soup& soup;  ///< the root soup: polygon i has id i
+  std::span<const std::array<IntPoint, 3>> corners;  ///< the grid triangles by id (GridTriangles::corners)
   const OperandTrees& trees;
   const Box& box;  ///< the root box: no polygon touches its boundary
   std::size_t operands;
@@ -39,12 +39,13 @@ bool classify_from_outside(const Tracer& tr, const Polygon& f, std::uint32_t own
 
 /// Operand `own`'s winding numbers just in front of and behind piece f (on
 /// its triangle's plane), from own's triangles alone: `tree` over them (item
-/// i is soup polygon first + i; f's triangle among them), traced from
-/// outside the root box as above. The solid proof's check that a component
-/// of own faces outwards (solid_check.hpp): one tree query instead of scans
-/// of the whole soup. False if every path tried met something degenerately.
-bool own_winding_from_outside(const Soup& soup, const TriangleTree& tree, std::uint32_t first, const Box& box,
-                              std::size_t operands, const Polygon& f, std::uint32_t own, std::uint64_t seed,
-                              int& front, int& back, TraceScratch& sc);
+/// i is grid triangle first + i, with corners corners[first + i]; f's
+/// triangle among them), traced from outside the root box as above. The
+/// solid proof's check that a component of own faces outwards
+/// (solid_check.hpp): one tree query instead of scans of the whole soup.
+/// False if every path tried met something degenerately.
+bool own_winding_from_outside(std::span<const std::array<IntPoint, 3>> corners, const TriangleTree& tree,
+                              std::uint32_t first, const Box& box, std::size_t operands, const Polygon& f,
+                              std::uint32_t own, std::uint64_t seed, int& front, int& back, TraceScratch& sc);
 
 }  // namespace ember::core
