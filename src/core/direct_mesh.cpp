@@ -94,7 +94,7 @@ std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box
         }
   });
   if (failed.load() || stop.load()) return std::nullopt;
-  std::optional<std::vector<OutputPolygon>> untouched = solid_untouched(grid, box, ctx, trees, partners, stop);
+  const std::optional<std::vector<KeptTriangle>> untouched = solid_untouched(grid, box, ctx, trees, partners, stop);
   if (!untouched) return std::nullopt;
 
   // One vertex per name: input vertices keep their global ids, crossing
@@ -136,7 +136,7 @@ std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box
   out.provenance.resize(tris.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, untouched->size(), 1024), [&](const auto& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const OutputPolygon& p = (*untouched)[i];
+      const KeptTriangle& p = (*untouched)[i];
       tris[i] = {vertex(p.id, 0), vertex(p.id, p.flip ? 2 : 1), vertex(p.id, p.flip ? 1 : 2)};
       out.provenance[i] = sources[p.id];
     }

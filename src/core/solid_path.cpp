@@ -434,8 +434,12 @@ class SolidSolver {
     return !failed && !stop_.load();
   }
 
-  /// Step 4: the kept untouched triangles by id, then the chunks in order.
-  std::vector<OutputPolygon> output(std::vector<std::vector<OutputPolygon>> chunk_out) const {
+  /// The untouched triangles on the result's surface, by id, each with its
+  /// orientation: one trace per component decided them (step 2).
+  /// Written in parallel at offsets counted per block of ids (a serial
+  /// push_back of every kept triangle was most of a large, lightly touched
+  /// Boolean's solve, and slower at 2 threads than at 1).
+  std::vector<KeptTriangle> kept_untouched() const {
     std::vector<char> keep(comps_.roots.size());
     Wnv front, back;
     for (std::size_t k = 0; k < comps_.roots.size(); ++k) {
@@ -443,36 +447,46 @@ class SolidSolver {
       bool flip = false;
       keep[k] = emitted(front, back, flip) ? (flip ? 2 : 1) : 0;
     }
-    // An untouched triangle whose neighbours are all untouched is settled
-    // (OutputPolygon::settled): no other operand comes near it or them, and
-    // its own operand meets it only in shared vertices and these edges.
-    // Written in parallel at offsets counted per block of ids (a serial
-    // push_back of every kept triangle was most of a large, lightly touched
-    // Boolean's solve, and slower at 2 threads than at 1).
     const std::size_t n = grid_.corners.size();
     const auto kept = [&](std::uint32_t i) { return !touched_[i] && keep[comps_.index[i]] != 0; };
     constexpr std::size_t kBlock = 4096;
     const std::size_t blocks = (n + kBlock - 1) / kBlock;
-    std::vector<std::size_t> at(blocks + chunk_out.size() + 1, 0);  // blocks, then chunks
+    std::vector<std::size_t> at(blocks + 1, 0);
     tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
       for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) at[b + 1] += kept(static_cast<std::uint32_t>(i));
     });
-    for (std::size_t c = 0; c < chunk_out.size(); ++c) at[blocks + c + 1] = chunk_out[c].size();
     std::partial_sum(at.begin(), at.end(), at.begin());
-    std::vector<OutputPolygon> out(at.back());
+    std::vector<KeptTriangle> out(at.back());
     tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
       std::size_t slot = at[b];
       for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
         const auto id = static_cast<std::uint32_t>(i);
-        if (!kept(id)) continue;
-        OutputPolygon& o = out[slot++];
-        o = output_of(grid_, id, trees_.operand_of(id), nullptr, keep[comps_.index[id]] == 2);
+        if (kept(id)) out[slot++] = {id, keep[comps_.index[id]] == 2};
+      }
+    });
+    return out;
+  }
+
+  /// Step 4: the kept untouched triangles by id, then the chunks in order.
+  std::vector<OutputPolygon> output(std::vector<std::vector<OutputPolygon>> chunk_out) const {
+    const std::vector<KeptTriangle> kept = kept_untouched();
+    std::vector<std::size_t> at(chunk_out.size() + 1, kept.size());
+    for (std::size_t c = 0; c < chunk_out.size(); ++c) at[c + 1] = at[c] + chunk_out[c].size();
+    std::vector<OutputPolygon> out(at.back());
+    // An untouched triangle whose neighbours are all untouched is settled
+    // (OutputPolygon::settled): no other operand comes near it or them, and
+    // its own operand meets it only in shared vertices and these edges.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) {
+        const std::uint32_t id = kept[k].id;
+        OutputPolygon& o = out[k];
+        o = output_of(grid_, id, trees_.operand_of(id), nullptr, kept[k].flip);
         o.settled = std::none_of(grid_.neighbors[id].begin(), grid_.neighbors[id].end(),
                                  [&](std::uint32_t j) { return j == kNoNeighbor || touched_[j]; });
       }
     });
     tbb::parallel_for(std::size_t{0}, chunk_out.size(), [&](std::size_t c) {
-      std::move(chunk_out[c].begin(), chunk_out[c].end(), out.begin() + static_cast<std::ptrdiff_t>(at[blocks + c]));
+      std::move(chunk_out[c].begin(), chunk_out[c].end(), out.begin() + static_cast<std::ptrdiff_t>(at[c]));
     });
     return out;
   }
@@ -665,12 +679,12 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const GridTriangles& grid,
   return solver.output(std::move(touched_out));
 }
 
-std::optional<std::vector<OutputPolygon>> solid_untouched(const GridTriangles& grid, const Box& box,
-                                                          const SolveContext& ctx, const OperandTrees& trees,
-                                                          const Partners& partners, const std::atomic<bool>& stop) {
+std::optional<std::vector<KeptTriangle>> solid_untouched(const GridTriangles& grid, const Box& box,
+                                                         const SolveContext& ctx, const OperandTrees& trees,
+                                                         const Partners& partners, const std::atomic<bool>& stop) {
   SolidSolver solver(grid, box, ctx, trees, partners, stop);
   if (!solver.classify_components()) return std::nullopt;
-  return solver.output({});
+  return solver.kept_untouched();
 }
 
 }  // namespace ember::core

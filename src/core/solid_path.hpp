@@ -105,12 +105,19 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const GridTriangles& grid,
                                                       const std::atomic<bool>* abandon = nullptr,
                                                       const Partners* partners = nullptr);
 
-/// Steps 2 and 4 alone: the untouched triangles on the result's surface
-/// (unbuilt, by id; `settled` as in solve_solid), classified by one trace
-/// per component. nullopt if a trace failed or `stop` was set. The direct
-/// route (direct_mesh.hpp) cuts the touched triangles itself.
-std::optional<std::vector<OutputPolygon>> solid_untouched(const GridTriangles& grid, const Box& box,
-                                                          const SolveContext& ctx, const OperandTrees& trees,
-                                                          const Partners& partners, const std::atomic<bool>& stop);
+/// An untouched triangle on the result's surface: its id, and whether it
+/// is emitted reversed.
+struct KeptTriangle {
+  std::uint32_t id;
+  bool flip;
+};
+
+/// Steps 2 and 4 alone, for the direct route (direct_mesh.hpp), which cuts
+/// the touched triangles itself: the untouched triangles on the result's
+/// surface, by id, classified by one trace per component. nullopt if a
+/// trace failed or `stop` was set.
+std::optional<std::vector<KeptTriangle>> solid_untouched(const GridTriangles& grid, const Box& box,
+                                                         const SolveContext& ctx, const OperandTrees& trees,
+                                                         const Partners& partners, const std::atomic<bool>& stop);
 
 }  // namespace ember::core
