@@ -117,6 +117,30 @@ int gmp_box_side(const Box32& box, const IntPoint& o, const std::array<std::int6
   return side;
 }
 
+TEST(TriangleTree, BoxOfIsTheCornersMinimumAndMaximumPerAxis) {
+  std::mt19937_64 rng(17);
+  constexpr std::int64_t kMax = std::int64_t{1} << 25;  // the grid's range (kCoordLimit)
+  std::uniform_int_distribution<std::int64_t> coord(-kMax, kMax);
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::array<IntPoint, 3> t;
+    for (IntPoint& p : t) {
+      p = {coord(rng), coord(rng), coord(rng)};
+      // The range's ends and repeated values too.
+      if (trial % 7 == 0) p.x = trial % 2 ? kMax : -kMax;
+      if (trial % 5 == 0) p.y = t[0].y;
+    }
+    const core::Box32 b = core::box_of(t);
+    const auto check = [&](std::int64_t IntPoint::*c, int a) {
+      const std::int64_t lo = std::min({t[0].*c, t[1].*c, t[2].*c}), hi = std::max({t[0].*c, t[1].*c, t[2].*c});
+      EXPECT_EQ(b.lo[a], lo) << trial;
+      EXPECT_EQ(b.hi[a], hi) << trial;
+    };
+    check(&IntPoint::x, 0);
+    check(&IntPoint::y, 1);
+    check(&IntPoint::z, 2);
+  }
+}
+
 TEST(BoxBesidePlane, NeverClaimsABoxThatTouchesThePlaneAndFindsClearOnes) {
   // Planes of random grid triangles over the whole grid (normal components
   // near 2^53) and boxes of every size: the filter must never call a box
