@@ -41,8 +41,8 @@ def phase_section(rows: list[dict], tools: list[str]) -> list[str]:
     if not embers:
         return []
     L = ["## Time per phase (pool pairs + paper cases; sum of the per-case medians)\n",
-         "setup = validation, quantization, triangles, closedness, soup; proof = exact solid check; "
-         "solve = the solid path or the subdivision and leaves (the solid path's direct route makes the triangle mesh there too, docs/core.md \"Direct route\"); output = mesh stage (weld, T-junctions, regions, triangulation). "
+         "setup = validation, quantization, grid triangles, closedness; proof = exact solid check; "
+         "solve = the solid path or the subdivision and leaves (the general path builds the root soup first, docs/core.md \"The root soup only where it is read\"; the solid path's direct route makes the triangle mesh there too, docs/core.md \"Direct route\"); output = mesh stage (weld, T-junctions, regions, triangulation). "
          "At more than one thread the defaults start the solid path alongside the proof (docs/core.md, "
          "\"Pipeline\"): proof then runs until the proof ends, solve is what remains; read the two together.\n",
          "| ember | " + " | ".join(f"{p} s (share)" for p in PHASES) + " | total s | cases |",
