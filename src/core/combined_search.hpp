@@ -7,11 +7,11 @@
 // kinds of pair in the same leaf pairs, visited once: 77.8k leaf pairs
 // instead of the three searches' 65k + 55k.
 //
-// It decides only the common case: no frame applies (the separate searches
-// keep their frames, which the pile cases need) and no operand has a pair
-// that meets improperly. Anything else (a frame, a self-intersection, a
-// search past its budget) answers nullopt, and the caller runs the separate
-// searches as before, which count and report.
+// It decides only that case: surfaces that crowd each other, no frame (the
+// separate searches keep their frames, which CAD-like operands and the pile
+// cases need) and no operand with a pair that meets improperly. Anything
+// else answers without partners, and the caller runs the separate searches
+// as before, which count and report.
 #include <array>
 #include <optional>
 #include <span>
@@ -41,12 +41,17 @@ struct CombinedBroadPhase {
 
 /// For two operands (trees.begin has three entries, their trees built over
 /// grid's triangles): the meeting pairs of the operands and the contact
-/// searches of those with `searched` set, in one traversal. No partners
-/// where a searched operand has two triangles meeting improperly, where the
-/// separate searches would use a frame (sliver_frame of a searched operand,
-/// partner_frame of the pair), or where the search passed its budget
-/// (kCountingPerTriangle box pairs per triangle). `second_vertex_base`:
-/// added to the second operand's vertex ids, past every id of the first
+/// searches of those with `searched` set, in one traversal. It runs only
+/// where the operands' surfaces crowd each other (most triangles of each
+/// have a box meeting one of the other's: a mesh and its copy turned a
+/// little) and their trees merge (keyed over common cells); elsewhere it
+/// returns at once, prepared nothing, and the separate searches cost less.
+/// No partners either where a searched operand has two triangles meeting
+/// improperly, where the separate searches would use a frame (sliver_frame
+/// of a searched operand, partner_frame of the pair) or where the search
+/// passed its budget (kCountingPerTriangle box pairs per triangle); those
+/// searches then run on what it prepared. `second_vertex_base`: added to
+/// the second operand's vertex ids, past every id of the first
 /// (InputTopology::operand_base[1]), so no vertex id is in both. The answer
 /// does not depend on the schedule. Parallel (oneTBB) in the caller's arena.
 /// `trees` are built without diagonals (build_operand_trees); where it
