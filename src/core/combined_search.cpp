@@ -41,7 +41,7 @@ bool sample_frames(const GridTriangles& grid, OperandTrees& trees, std::array<bo
 }
 
 /// Triangles of each operand sampled for crowded().
-constexpr std::size_t kCrowdSamples = 64;
+constexpr std::size_t kCrowdSamples = 32;
 
 /// Whether the operands' surfaces crowd each other: at least 3 in 4 of a
 /// sample of each one's triangles (evenly spaced, kCrowdSamples) have a box
