@@ -18,7 +18,6 @@
 #include <string>
 #include <unordered_map>
 
-#include "core/combined_search.hpp"
 #include "core/direct_mesh.hpp"
 #include "core/grid_input.hpp"
 #include "core/input_soup.hpp"
@@ -254,13 +253,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     bool may_all_be_solid = options.solid_path;
     for (std::size_t o = 0; o < operands.size(); ++o)
       may_all_be_solid &= ctx.solid[o] || (options.detect_solid && open[o] == 0);
-    // Two operands, one to be proven: the proof's and the solid path's
-    // searches in one (combined_search.hpp), which builds the diagonals
-    // only where it declines.
-    bool combine = may_all_be_solid && options.detect_solid && topology && operands.size() == 2;
-    if (combine) combine = (!ctx.solid[0] && open[0] == 0) || (!ctx.solid[1] && open[1] == 0);
-    if (may_all_be_solid)
-      arena.execute([&] { trees = core::build_operand_trees(in.operand_begin, grid.corners, !combine, combine); });
+    if (may_all_be_solid) arena.execute([&] { trees = core::build_operand_trees(in.operand_begin, grid.corners); });
     // The leaves' diagonal extents serve the two broad phases only (the
     // proof's contact searches, the partner search): freed when the last of
     // them ends, before the direct route's peak (32 bytes per input triangle).
@@ -281,8 +274,6 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     // curve (direct_mesh.hpp); otherwise its pieces, for the mesh stage.
     if (topology) topology->by_triangle = grid.vertex_ids;
     const bool direct_allowed = topology && operands.size() == 2 && options.output == BooleanOptions::Output::Triangles;
-    // The partner search's pairs, where the combined broad phase found them.
-    core::CombinedBroadPhase combined;
     // A speculative run (`abandon` given) bounds its partner search: where
     // the operands' triangles crowd each other by the hundreds (the sliver
     // pile's twin rods), the search would hold a thread for the whole proof,
@@ -293,18 +284,13 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
       const std::atomic<bool> never{false};
       const std::atomic<bool>& stop = abandon ? *abandon : never;
       const std::size_t n = grid.corners.size();
-      core::Partners searched;
-      if (!combined.partners) {
-        const std::size_t budget =
-            abandon ? core::kSpeculativePartnersPerTriangle * n + core::kSpeculativeAllowance : SIZE_MAX;
-        searched = core::find_partners(grid, *trees, n, stop, budget);
-        if (searched.gave_up) {
-          route.gave_up = true;
-          return route;
-        }
-        broad_phase_done();
+      const std::size_t budget = abandon ? core::kSpeculativePartnersPerTriangle * n + core::kSpeculativeAllowance : SIZE_MAX;
+      const core::Partners partners = core::find_partners(grid, *trees, n, stop, budget);
+      if (partners.gave_up) {
+        route.gave_up = true;
+        return route;
       }
-      const core::Partners& partners = combined.partners ? *combined.partners : searched;
+      broad_phase_done();
       if (stop.load()) return route;
       if (direct_allowed)
         route.mesh = core::direct_solid_mesh(grid, root.box(), c, *trees, partners, q, sources, *topology, stop);
@@ -326,25 +312,11 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
         report(options, "solid check", 0.1);
         std::vector<core::SolidFinding> findings(unproven.size());
         std::atomic<bool> disproved{false};
-        // Two operands: their contact searches and the partner search in
-        // one traversal (combined_search.hpp), where it decides; else each
-        // apart, as below (reusing its prepared triangles).
-        if (combine) {
-          std::array<bool, 2> searched{false, false};
-          for (const std::uint32_t o : unproven) searched[o] = true;
-          arena.execute([&] { combined = core::combined_broad_phase(grid, *trees, searched, topology->operand_base[1]); });
-        }
         if (trees) ++broad_phases;
         const auto prove = [&] {
           tbb::parallel_for(std::size_t{0}, unproven.size(), [&](std::size_t k) {
             const std::uint32_t o = unproven[k];
-            if (combined.partners) {
-              findings[k] = core::check_solid_without_contacts(root, grid, o, *trees);
-            } else {
-              std::span<const core::ContactTriangle> prepared;  // where the combined broad phase declined
-              if (trees) prepared = combined.of(*trees, o);
-              findings[k] = core::check_solid(root, grid, o, trees ? &*trees : nullptr, &disproved, prepared);
-            }
+            findings[k] = core::check_solid(root, grid, o, trees ? &*trees : nullptr, &disproved);
             if (findings[k].verdict != core::SolidVerdict::Solid) disproved = true;
           });
           if (trees) broad_phase_done();
@@ -364,7 +336,6 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
         }
         for (std::size_t k = 0; k < unproven.size(); ++k)
           ctx.solid[unproven[k]] = record_proof(findings[k], unproven[k], result);
-        combined.prepared = {};
       }
     }
     for (const char s : ctx.solid) result.stats.solid_operands += s != 0;

@@ -29,11 +29,10 @@ namespace {
 class Search {
  public:
   Search(std::span<const ContactTriangle> tris, std::size_t max_pairs, const TriangleTree* tree,
-         std::atomic<bool>* found_one, const LeafDiagonals* diagonals, const SampledFrame* sampled,
-         const MixedOperands* mixed = nullptr)
-      : tris_(tris), diagonals_(diagonals), mixed_(mixed), max_pairs_(max_pairs), found_one_(found_one) {
+         std::atomic<bool>* found_one, const LeafDiagonals* diagonals)
+      : tris_(tris), diagonals_(diagonals), max_pairs_(max_pairs), found_one_(found_one) {
     const std::size_t n = tris.size();
-    budget_ = mixed ? mixed->budget : kBudgetPerTriangle * n + (std::size_t{1} << 16);
+    budget_ = kBudgetPerTriangle * n + (std::size_t{1} << 16);
     counting_budget_ = kCountingPerTriangle * n + (std::size_t{1} << 16);
     if (!tree) {
       std::vector<Box32> boxes(n);
@@ -46,9 +45,7 @@ class Search {
     tree_ptr_ = tree;
     ids_.emplace(*tree, tris);
     if (!diagonals_) diagonals_ = &own_diagonals_.emplace(*tree, tris);
-    if (mixed) return;  // its caller found no frame (combined_search.hpp)
-    const std::optional<FrameAxes> frame = sampled && sampled->sampled ? sampled->frame : sliver_frame(tris, *tree);
-    if (frame) frame_.emplace(*tree, tris, *frame);
+    if (const std::optional<FrameAxes> frame = sliver_frame(tris, *tree)) frame_.emplace(*tree, tris, *frame);
   }
 
   ContactSearchResult run() {
@@ -60,9 +57,6 @@ class Search {
     const bool stopped = gave_up_.load() || found >= max_pairs_;
     return {std::min(found, max_pairs_), found == 0 && gave_up_.load(), !stopped};
   }
-
-  /// After run(): the combined search's verdict (MixedOperands).
-  bool clean() const { return found_.load() == 0 && !gave_up_.load(); }
 
  private:
   /// Subtrees with at least this many leaves are traversed as parallel tasks.
@@ -76,17 +70,6 @@ class Search {
     return found_.load(std::memory_order_relaxed) >= max_pairs_ || gave_up_.load(std::memory_order_relaxed);
   }
   bool spawns(int depth) const { return ((tree().first_leaf() + 1) >> depth) >= kSpawnLeaves; }
-
-  /// f.template operator()<Framed, Mixed>() for this search's kind (a
-  /// combined search has no frame): each compiled apart, so that a test a
-  /// search does not need costs nothing (the frame's, as a branch: 0.6 M
-  /// instructions on the bunny pair).
-  template <typename F>
-  void dispatch(F&& f) {
-    if (mixed_) return f.template operator()<false, true>();
-    if (frame_) return f.template operator()<true, false>();
-    return f.template operator()<false, false>();
-  }
 
   /// Adds this task's examined pairs to the total; past the budget, give up,
   /// and past the counting budget too once a pair has decided the verdict.
@@ -129,10 +112,14 @@ class Search {
   void cross_overlapping(std::size_t a, std::size_t b, int depth, std::size_t& examined) {
     if (done()) return;
     if (!spawns(depth)) {
+      // Each combination compiled apart: the frame's test costs nothing where
+      // an operand has none (bunny pair: 0.6 M instructions as a branch).
 #if EMBER_WIDE_LANES
-      if (wide_) return dispatch([&]<bool Framed, bool Mixed> { subtree_cross_wide<Framed, Mixed>(a, b, depth, examined); });
+      if (wide_) return frame_ ? subtree_cross_wide<true>(a, b, depth, examined)
+                               : subtree_cross_wide<false>(a, b, depth, examined);
 #endif
-      return dispatch([&]<bool Framed, bool Mixed> { subtree_cross_with<false, Framed, Mixed>(a, b, depth, examined); });
+      return frame_ ? subtree_cross_with<false, true>(a, b, depth, examined)
+                    : subtree_cross_with<false, false>(a, b, depth, examined);
     }
     const std::size_t al = 2 * a + 1, ar = 2 * a + 2, bl = 2 * b + 1, br = 2 * b + 2;
     tbb::task_group group;
@@ -147,7 +134,7 @@ class Search {
   /// of its own (as a recursion, each node pair cost a call with its
   /// spills). Both sides descend together: at most three pending pairs per
   /// level, and a tree of fewer than 2^32 triangles has under 30 levels.
-  template <bool Wide, bool Framed, bool Mixed>
+  template <bool Wide, bool Framed>
   [[gnu::always_inline]] inline void subtree_cross_with(std::size_t a, std::size_t b, int depth, std::size_t& examined) {
     struct NodePair {
       std::size_t a, b;
@@ -161,7 +148,7 @@ class Search {
       const NodePair v = stack[--top];
       if (done()) return;
       if (v.depth == tree().depth()) {
-        leaf_pairs_with<Wide, Framed, Mixed>(v.a, v.b, examined);
+        leaf_pairs_with<Wide, Framed>(v.a, v.b, examined);
         continue;
       }
       // Pushed in reverse: visited in the recursion's order (al-bl, al-br, ar-bl, ar-br).
@@ -172,9 +159,9 @@ class Search {
     }
   }
 #if EMBER_WIDE_LANES
-  template <bool Framed, bool Mixed>
+  template <bool Framed>
   EMBER_TARGET_AVX2 void subtree_cross_wide(std::size_t a, std::size_t b, int depth, std::size_t& examined) {
-    subtree_cross_with<true, Framed, Mixed>(a, b, depth, examined);
+    subtree_cross_with<true, Framed>(a, b, depth, examined);
   }
 #endif
 
@@ -191,12 +178,7 @@ class Search {
   /// Wide: with the 8-lane leaf tests (wide_lanes.hpp); always inlined, so
   /// that each caller below compiles it for its own instruction set.
   /// Framed: with the frame's extents (frame_ set).
-  /// Mixed: two operands' triangles (mixed_ set): a pair of one operand gets
-  /// the contact test (where that operand is searched), a pair of both the
-  /// same exact test (their vertex ids are distinct, so it is
-  /// apart_triangles_meet, the partner search's test), whose hits are
-  /// meeting pairs, not contacts.
-  template <bool Wide, bool Framed, bool Mixed>
+  template <bool Wide, bool Framed>
   [[gnu::always_inline]] inline void leaf_pairs_with(std::size_t a, std::size_t b, std::size_t& examined) {
     const std::size_t ab = tree().leaf_slots(a).first;
     const auto [bb, be] = tree().leaf_slots(b);
@@ -214,15 +196,6 @@ class Search {
       // are, its neighbours need no test.
       const ContactTriangle& ti = tris_[tree().item(i)];
       unsigned candidates = tree().overlap_mask_in<Wide>(b, box) & (~0u << (from - bb));
-      // Mixed: the slots of b holding i's operand; a promised operand's own
-      // pairs are not tested.
-      unsigned same = ~0u;
-      if constexpr (Mixed) {
-        const unsigned second = mixed_->second[b - tree().first_leaf()];
-        const unsigned i_operand = mixed_->second[a - tree().first_leaf()] >> (i - ab) & 1u;
-        same = i_operand ? second : ~second;
-        if (!mixed_->searched[i_operand]) candidates &= ~same;
-      }
       // Framed: first the extents along the operand's slivers (sliver_frame),
       // which leave few of a sliver pile's box pairs (case 582: 1 in 30),
       // before the vertex ids are compared.
@@ -245,11 +218,6 @@ class Search {
         if (!(shared.sharing >> slot & 1u) ? !apart_triangles_meet(ti.p(), ti.n, tj.p(), tj.n)
                                            : !triangles_meet_improperly(ti, tj))
           continue;
-        if constexpr (Mixed)
-          if (!(same >> slot & 1u)) {
-            mixed_->meetings->local().emplace_back(tree().item(i), tree().item(bb + static_cast<std::size_t>(slot)));
-            continue;
-          }
         if (found_one_) found_one_->store(true, std::memory_order_relaxed);
         if (found_.fetch_add(1) + 1 >= max_pairs_) return;
       }
@@ -259,14 +227,14 @@ class Search {
 
   void leaf_pairs(std::size_t a, std::size_t b, std::size_t& examined) {
 #if EMBER_WIDE_LANES
-    if (wide_) return dispatch([&]<bool Framed, bool Mixed> { leaf_pairs_wide<Framed, Mixed>(a, b, examined); });
+    if (wide_) return frame_ ? leaf_pairs_wide<true>(a, b, examined) : leaf_pairs_wide<false>(a, b, examined);
 #endif
-    return dispatch([&]<bool Framed, bool Mixed> { leaf_pairs_with<false, Framed, Mixed>(a, b, examined); });
+    return frame_ ? leaf_pairs_with<false, true>(a, b, examined) : leaf_pairs_with<false, false>(a, b, examined);
   }
 #if EMBER_WIDE_LANES
-  template <bool Framed, bool Mixed>
+  template <bool Framed>
   EMBER_TARGET_AVX2 void leaf_pairs_wide(std::size_t a, std::size_t b, std::size_t& examined) {
-    leaf_pairs_with<true, Framed, Mixed>(a, b, examined);
+    leaf_pairs_with<true, Framed>(a, b, examined);
   }
 #endif
 
@@ -274,9 +242,8 @@ class Search {
   TriangleTree own_tree_;  ///< when the caller gave none
   std::optional<LeafVertexIds> ids_;
   std::optional<LeafDiagonals> own_diagonals_;  ///< when the caller gave none
-  std::optional<LeafFrameExtents> frame_;  ///< along the slivers (sliver_frame), if any
+  std::optional<LeafFrameExtents> frame_;       ///< along the slivers (sliver_frame), if any
   const LeafDiagonals* diagonals_;
-  const MixedOperands* mixed_;  ///< the combined search's operands, if it is one
   const TriangleTree* tree_ptr_ = nullptr;
   std::size_t max_pairs_;
   std::size_t budget_ = 0;
@@ -290,47 +257,25 @@ class Search {
 
 }  // namespace
 
-namespace {
-
 // An ordinary mesh has a few box pairs per triangle and none of them apart in
 // the frame (bunny pair, pair001): its sample rejects the frame.
-template <typename Corners>
-std::optional<FrameAxes> sliver_frame_of(std::size_t n, Corners&& corners, const TriangleTree& tree) {
+std::optional<FrameAxes> sliver_frame(std::span<const ContactTriangle> tris, const TriangleTree& tree) {
+  const auto corners = [&](std::size_t i) -> const std::array<IntPoint, 3>& { return tris[i].p(); };
   FrameAxes frame;
-  if (!principal_frame(frame_points(n, corners), frame)) return std::nullopt;
+  if (!principal_frame(frame_points(tris.size(), corners), frame)) return std::nullopt;
   std::size_t sampled = 0;
   const std::size_t dismissed =
-      frame_dismissals<1>(n, corners, tree, corners, std::array<FrameAxes, 1>{frame}, true, sampled)[0];
+      frame_dismissals<1>(tris.size(), corners, tree, corners, std::array<FrameAxes, 1>{frame}, true, sampled)[0];
   // Each pair is met from both of its triangles.
   if (static_cast<double>(dismissed) < 2 * kFramePairsPerTriangle * static_cast<double>(sampled)) return std::nullopt;
   return frame;
 }
 
-}  // namespace
-
-std::optional<FrameAxes> sliver_frame(std::span<const ContactTriangle> tris, const TriangleTree& tree) {
-  return sliver_frame_of(tris.size(), [&](std::size_t i) -> const std::array<IntPoint, 3>& { return tris[i].p(); }, tree);
-}
-
-std::optional<FrameAxes> sliver_frame(std::span<const std::array<IntPoint, 3>> corners, const TriangleTree& tree) {
-  return sliver_frame_of(corners.size(), [&](std::size_t i) -> const std::array<IntPoint, 3>& { return corners[i]; },
-                         tree);
-}
-
 ContactSearchResult find_contacts(std::span<const ContactTriangle> tris, std::size_t max_pairs,
                                   const TriangleTree* tree, std::atomic<bool>* found_one,
-                                  const LeafDiagonals* diagonals, const SampledFrame* sampled) {
+                                  const LeafDiagonals* diagonals) {
   if (tris.size() < 2 || max_pairs == 0) return {};
-  return Search(tris, max_pairs, tree, found_one, tree ? diagonals : nullptr, sampled).run();
-}
-
-bool find_contacts_and_meetings(std::span<const ContactTriangle> tris, const TriangleTree& tree,
-                                const LeafDiagonals& diagonals, const MixedOperands& mixed) {
-  if (tris.size() < 2) return true;
-  // One pair found decides (the caller recounts that operand alone).
-  Search search(tris, 1, &tree, nullptr, &diagonals, nullptr, &mixed);
-  search.run();
-  return search.clean();
+  return Search(tris, max_pairs, tree, found_one, tree ? diagonals : nullptr).run();
 }
 
 }  // namespace ember::core

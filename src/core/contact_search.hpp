@@ -9,15 +9,9 @@
 // triangle to every cell its box reached and dismissed the repeats by an
 // ownership rule only after the box test: on EMBER case 16 it examined 7x
 // more box pairs than it tested, and that loop was half of the proof.
-#include <tbb/enumerable_thread_specific.h>
-
-#include <array>
 #include <cstddef>
-#include <cstdint>
 #include <optional>
 #include <span>
-#include <utility>
-#include <vector>
 
 #include "core/leaf_diagonals.hpp"
 #include "core/principal_frame.hpp"
@@ -52,40 +46,9 @@ struct ContactSearchResult {
 /// `tree`, if given, is the tree over tris' boxes (TriangleTree(box_of(tris[i].p)...)), built once for the proof and the solid path;
 /// `diagonals`, if given with it, its leaves' diagonal extents (OperandTrees).
 /// `found_one`, if given, is set when the first pair is found (the count goes on).
-/// `sampled`, if it says so, is sliver_frame(tris, *tree) found already.
 ContactSearchResult find_contacts(std::span<const ContactTriangle> tris, std::size_t max_pairs,
                                   const TriangleTree* tree = nullptr, std::atomic<bool>* found_one = nullptr,
-                                  const LeafDiagonals* diagonals = nullptr, const SampledFrame* sampled = nullptr);
-
-/// Pairs of triangle ids (items) collected per thread.
-using MeetingPairs = tbb::enumerable_thread_specific<std::vector<std::pair<std::uint32_t, std::uint32_t>>>;
-
-/// The combined search's view of its two operands (combined_search.hpp).
-struct MixedOperands {
-  /// Per leaf of the tree (leaf node - first_leaf()), bit s: slot s holds a
-  /// triangle of the second operand.
-  std::span<const std::uint8_t> second;
-  /// Whether each operand's own pairs get the contact test (a promised
-  /// operand's do not).
-  std::array<bool, 2> searched{true, true};
-  /// Box pairs examined (as find_contacts counts them) before it gives up.
-  std::size_t budget = 0;
-  /// Where the pairs of different operands that meet go.
-  MeetingPairs* meetings = nullptr;
-};
-
-/// One traversal of `tree` (over all of `tris`, two operands' triangles
-/// whose vertex ids differ between the operands; `diagonals` its leaves')
-/// doing find_contacts' work for each searched operand and find_partners'
-/// for the pair: true, with every meeting pair of different operands in
-/// `mixed.meetings` (as item pairs, each pair once, either way round), if
-/// no searched operand has a pair that meets improperly and the search
-/// stayed within mixed.budget; false otherwise (the collected pairs are
-/// then incomplete). The answer does not depend on the schedule: with no
-/// improper pair the traversal runs to the end, and its count passes the
-/// budget or not. Parallel (oneTBB) in the caller's arena.
-bool find_contacts_and_meetings(std::span<const ContactTriangle> tris, const TriangleTree& tree,
-                                const LeafDiagonals& diagonals, const MixedOperands& mixed);
+                                  const LeafDiagonals* diagonals = nullptr);
 
 /// The frame whose extents find_contacts adds to its filters
 /// (leaf_frame_extents.hpp): the principal frame of the triangles' corners,
@@ -94,8 +57,6 @@ bool find_contacts_and_meetings(std::span<const ContactTriangle> tris, const Tri
 /// leave (contact_search.cpp: kFramePairsPerTriangle); otherwise none.
 /// Deterministic (a fixed sample). Public for its tests.
 std::optional<FrameAxes> sliver_frame(std::span<const ContactTriangle> tris, const TriangleTree& tree);
-/// The same for the triangles with these corners.
-std::optional<FrameAxes> sliver_frame(std::span<const std::array<IntPoint, 3>> corners, const TriangleTree& tree);
 
 /// The work budget: box pairs examined per triangle (plus a fixed allowance
 /// for small inputs) before the search gives up; the pairs of tree nodes

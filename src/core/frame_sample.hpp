@@ -5,9 +5,6 @@
 // proof's contact search (an operand against itself, sliver_frame) and the
 // solid path's partner search (one operand against another, partner_frame).
 // Only a cost decision: any frame is sound.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
-
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -53,38 +50,24 @@ std::vector<std::array<double, 3>> frame_points(std::size_t n, Corners&& corners
 /// triangles y(j) of `y_tree` (item j), summed over the sample; `sampled`
 /// is the sample's size. `same`: x and y are one operand (a triangle is not
 /// paired with itself).
-/// The samples side by side (oneTBB): one can cost a few milliseconds where
-/// it meets slivers by the hundreds (EMBER case 16's common frame), and the
-/// combined broad phase waits for it (combined_search.cpp). Integer counts:
-/// the sum does not depend on the split.
 template <std::size_t F, typename XCorners, typename YCorners>
 std::array<std::size_t, F> frame_dismissals(std::size_t nx, XCorners&& x, const TriangleTree& y_tree, YCorners&& y,
                                             const std::array<FrameAxes, F>& frames, bool same, std::size_t& sampled) {
+  std::array<std::size_t, F> dismissed{};
+  sampled = 0;
   const std::size_t samples = std::clamp<std::size_t>(nx / 64, kFrameSampleMin, kFrameSampleMax);
-  const std::size_t step = std::max<std::size_t>(1, nx / samples);
-  sampled = (nx + step - 1) / step;
-  using Counts = std::array<std::size_t, F>;
-  return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, sampled, 1), Counts{},
-      [&](const tbb::blocked_range<std::size_t>& r, Counts dismissed) {
-        for (std::size_t k = r.begin(); k != r.end(); ++k) {
-          const std::size_t i = k * step;
-          const std::array<IntPoint, 3>& p = x(i);
-          const DiagonalExtent diagonal = diagonal_extent(p);
-          std::array<ProjectedExtent<3>, F> along;
-          for (std::size_t f = 0; f < F; ++f) along[f] = frame_extent(p, frames[f]);
-          y_tree.for_each_overlapping(box_of(p), [&](std::uint32_t j) {
-            const std::array<IntPoint, 3>& q = y(j);
-            if ((same && j == i) || diagonally_apart(diagonal, diagonal_extent(q))) return;
-            for (std::size_t f = 0; f < F; ++f) dismissed[f] += extents_apart(along[f], frame_extent(q, frames[f]));
-          });
-        }
-        return dismissed;
-      },
-      [](Counts a, const Counts& b) {
-        for (std::size_t f = 0; f < F; ++f) a[f] += b[f];
-        return a;
-      });
+  for (std::size_t i = 0; i < nx; i += std::max<std::size_t>(1, nx / samples), ++sampled) {
+    const std::array<IntPoint, 3>& p = x(i);
+    const DiagonalExtent diagonal = diagonal_extent(p);
+    std::array<ProjectedExtent<3>, F> along;
+    for (std::size_t f = 0; f < F; ++f) along[f] = frame_extent(p, frames[f]);
+    y_tree.for_each_overlapping(box_of(p), [&](std::uint32_t j) {
+      const std::array<IntPoint, 3>& q = y(j);
+      if ((same && j == i) || diagonally_apart(diagonal, diagonal_extent(q))) return;
+      for (std::size_t f = 0; f < F; ++f) dismissed[f] += extents_apart(along[f], frame_extent(q, frames[f]));
+    });
+  }
+  return dismissed;
 }
 
 }  // namespace ember::core

@@ -6,20 +6,11 @@
 // for them (their error bounds take the frame as an exact linear map with
 // entries of magnitude at most 1); this one only makes them effective.
 #include <array>
-#include <optional>
 #include <vector>
 
 namespace ember::core {
 
 using FrameAxes = std::array<std::array<double, 3>, 3>;
-
-/// A frame sample's answer (sliver_frame, partner_frame) kept for a later
-/// search, which then need not sample again: whether it was sampled, and
-/// the frame if one was worth its extents.
-struct SampledFrame {
-  bool sampled = false;
-  std::optional<FrameAxes> frame;
-};
 
 /// The points' principal axes (power iteration on their covariance) as a
 /// right-handed frame: the direction in which they spread most (the x axis if

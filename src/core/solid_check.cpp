@@ -113,10 +113,6 @@ std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, const
 
 namespace {
 
-bool consecutive(std::span<const std::uint32_t> members) {
-  return !members.empty() && members.back() - members.front() + 1 == members.size();
-}
-
 /// The ids of the operand's polygons, in soup order: a parallel filter over
 /// fixed blocks (count, offsets, fill). A serial scan of the 1.08M-triangle
 /// union's root soup (86 MB) was ~20 ms of each operand's proof at any
@@ -143,81 +139,44 @@ std::vector<std::uint32_t> operand_members(const Soup& soup, std::uint32_t opera
 
 }  // namespace
 
-void prepare_contact_triangles(const GridTriangles& grid, std::span<const std::uint32_t> members,
-                               std::span<ContactTriangle> out, bool certify) {
+SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint32_t operand,
+                         const OperandTrees* trees, std::atomic<bool>* intersecting) {
+  // With the trees, the operand's triangles are its range of ids; without,
+  // the proof scans the soup anyway (below), so it is built now.
+  std::vector<std::uint32_t> members;
+  if (trees) {
+    members.resize(root.operand_begin()[operand + 1] - root.operand_begin()[operand]);
+    std::iota(members.begin(), members.end(), root.operand_begin()[operand]);
+  } else {
+    members = operand_members(root.with_soup().soup, operand);
+  }
+  if (members.empty()) return {};
+  const TriangleTree* tree = trees ? &trees->tree[operand] : nullptr;
+  const LeafDiagonals* diagonals = trees ? &trees->diagonals[operand] : nullptr;
+  // Counting the contacts (not just finding one) costs at most one full
+  // search, the price of proving a solid operand; the count tells the user why.
+  FillVector<ContactTriangle> tris(members.size());  // every entry written below
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i)
-                        out[i] = contact_triangle(grid.corners[members[i]], grid.vertex_ids[members[i]]);
+                        tris[i] = contact_triangle(grid.corners[members[i]], grid.vertex_ids[members[i]]);
                     });
-  if (members.empty() || !certify) return;
-  // out holds all of the operand's triangles, as a star must. They are
+  // tris holds all of the operand's triangles, as a star must. They are
   // the grid's triangles members[0] .. members[0] + size - 1 (an operand's
   // polygons are consecutive in the root soup), whose neighbours are stars'
   // next triangles; were they not consecutive, ids outside would count as no
   // neighbour and certify nothing, never too much.
-  certify_embedded_stars(out,
-                         consecutive(members) ? std::span<const std::array<std::uint32_t, 3>>(
-                                                    grid.neighbors.data() + members.front(), members.size())
-                                              : std::span<const std::array<std::uint32_t, 3>>(),
+  const bool consecutive = members.back() - members.front() + 1 == members.size();
+  certify_embedded_stars(tris,
+                         consecutive ? std::span<const std::array<std::uint32_t, 3>>(grid.neighbors.data() + members.front(),
+                                                                                      members.size())
+                                     : std::span<const std::array<std::uint32_t, 3>>(),
                          members.front());
-}
-
-namespace {
-
-/// The operand's triangles: with the trees its range of ids; without, the
-/// proof scans the soup anyway (later), so it is built now.
-std::vector<std::uint32_t> members_of(RootProblem& root, std::uint32_t operand, const OperandTrees* trees) {
-  if (!trees) return operand_members(root.with_soup().soup, operand);
-  std::vector<std::uint32_t> members(root.operand_begin()[operand + 1] - root.operand_begin()[operand]);
-  std::iota(members.begin(), members.end(), root.operand_begin()[operand]);
-  return members;
-}
-
-SolidFinding components_and_windings(RootProblem& root, const GridTriangles& grid, std::uint32_t operand,
-                                     std::span<const std::uint32_t> members, const TriangleTree* tree);
-
-}  // namespace
-
-SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint32_t operand,
-                         const OperandTrees* trees, std::atomic<bool>* intersecting,
-                         std::span<const ContactTriangle> prepared) {
-  const std::vector<std::uint32_t> members = members_of(root, operand, trees);
-  if (members.empty()) return {};
-  const TriangleTree* tree = trees ? &trees->tree[operand] : nullptr;
-  const LeafDiagonals* diagonals = trees && !trees->diagonals.empty() ? &trees->diagonals[operand] : nullptr;
-  // Counting the contacts (not just finding one) costs at most one full
-  // search, the price of proving a solid operand; the count tells the user why.
-  FillVector<ContactTriangle> own;
-  std::span<const ContactTriangle> tris = prepared;
-  if (tris.size() != members.size()) {
-    own = FillVector<ContactTriangle>(members.size());  // every entry written by prepare_contact_triangles
-    prepare_contact_triangles(grid, members, own);
-    tris = own;
-  }
   if (tree && tree->size() != tris.size()) tree = nullptr;  // not this operand's: build one (and its diagonals)
-  const SampledFrame* sampled = tree && operand < trees->sliver.size() ? &trees->sliver[operand] : nullptr;
-  const ContactSearchResult contacts =
-      find_contacts(tris, OperandReport::kMaxReportedPairs, tree, intersecting, diagonals, sampled);
-  own = {};
+  const ContactSearchResult contacts = find_contacts(tris, OperandReport::kMaxReportedPairs, tree, intersecting, diagonals);
+  tris = {};
   if (contacts.pairs > 0) return {SolidVerdict::SelfIntersecting, contacts.pairs, 0, contacts.complete};
   if (contacts.gave_up) return {SolidVerdict::TooComplex, 0, 0};
-  return components_and_windings(root, grid, operand, members, tree);
-}
-
-SolidFinding check_solid_without_contacts(RootProblem& root, const GridTriangles& grid, std::uint32_t operand,
-                                          const OperandTrees& trees) {
-  const std::vector<std::uint32_t> members = members_of(root, operand, &trees);
-  if (members.empty()) return {};
-  return components_and_windings(root, grid, operand, members, &trees.tree[operand]);
-}
-
-namespace {
-
-/// Steps 2 and 3 of the proof, its contact search having found no pair.
-/// `tree`, if given, is the operand's tree (item i: members.front() + i).
-SolidFinding components_and_windings(RootProblem& root, const GridTriangles& grid, std::uint32_t operand,
-                                     std::span<const std::uint32_t> members, const TriangleTree* tree) {
   // One representative per component across manifold edges: its smallest
   // id, the first member in order.
   std::vector<char> keep(grid.neighbors.size(), 0);
@@ -233,7 +192,7 @@ SolidFinding components_and_windings(RootProblem& root, const GridTriangles& gri
   // reads the whole soup a few times: their total work is bounded (an
   // operand of many components, past the bound, is not proven without a
   // tree, and its failed tree traces are not retried).
-  const TriangleTree* own_tree = consecutive(members) && tree && tree->size() == members.size() ? tree : nullptr;
+  const TriangleTree* own_tree = consecutive ? tree : nullptr;
   constexpr std::size_t kScanBudget = std::size_t{1} << 25;
   const bool scans_affordable = reps.size() <= 8 || reps.size() * grid.corners.size() <= kScanBudget;
   if (!own_tree && !scans_affordable) return {SolidVerdict::TooComplex, 0, 0};
@@ -270,7 +229,5 @@ SolidFinding components_and_windings(RootProblem& root, const GridTriangles& gri
   }
   return finding;
 }
-
-}  // namespace
 
 }  // namespace ember::core

@@ -29,7 +29,6 @@ namespace ember::core {
 
 class LeafDiagonals;
 class RootProblem;
-struct ContactTriangle;
 struct OperandTrees;
 
 enum class SolidVerdict {
@@ -81,17 +80,8 @@ struct SolidFinding {
 /// self-intersection, before the count is complete: the defaults' solid
 /// path, started alongside the proof on the premise that every operand is
 /// solid, stops on it (solve_solid's `abandon`) and frees its threads.
-/// `prepared`, if it holds one entry per triangle of the operand, is its
-/// triangles as prepare_contact_triangles makes them (vertex ids may be
-/// offset by a constant: only their equality matters), made already.
 SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint32_t operand,
-                         const OperandTrees* trees = nullptr, std::atomic<bool>* intersecting = nullptr,
-                         std::span<const ContactTriangle> prepared = {});
-
-/// check_solid's verdict for an operand whose contact search has run and
-/// found no pair (combined_search.hpp): its components and their windings.
-SolidFinding check_solid_without_contacts(RootProblem& root, const GridTriangles& grid, std::uint32_t operand,
-                                          const OperandTrees& trees);
+                         const OperandTrees* trees = nullptr, std::atomic<bool>* intersecting = nullptr);
 
 /// A grid triangle prepared for the contact test: where its corners are,
 /// their welded ids (equal iff equal positions, within the triangles
@@ -113,12 +103,6 @@ struct ContactTriangle {
   const std::array<IntPoint, 3>& p() const { return *corners; }
 };
 static_assert(sizeof(ContactTriangle) <= 48, "ContactTriangle: the proof's per-triangle entry");
-
-/// out[i]: the contact triangle of grid triangle members[i], with the stars
-/// certified (vertex_stars.hpp; with `certify`) where `members` (ascending)
-/// are all of an operand's triangles, consecutive ids. Parallel (oneTBB).
-void prepare_contact_triangles(const GridTriangles& grid, std::span<const std::uint32_t> members,
-                               std::span<ContactTriangle> out, bool certify = true);
 /// The contact triangle of the corners `p`, which must outlive it.
 ContactTriangle contact_triangle(const std::array<IntPoint, 3>& p, const std::array<std::uint32_t, 3>& ids);
 /// The triangle points at `p`: a temporary would dangle.

@@ -34,7 +34,7 @@ std::int32_t extent(const Box32& b) {
   return std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
 }
 
-using PairSink = MeetingPairs;
+using PairSink = tbb::enumerable_thread_specific<std::vector<std::pair<std::uint32_t, std::uint32_t>>>;
 
 /// The partner search's work so far against its budget (find_partners):
 /// the slot pairs of the leaf pairs it visits (kLeaf^2 each; counting per
@@ -283,8 +283,7 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
         return std::span(grid.corners).subspan(trees.begin[o], trees.begin[o + 1] - trees.begin[o]);
       };
       std::optional<LeafFrameExtents> a_frame, b_frame;
-      const bool sampled = operands == 2 && trees.partner.sampled;
-      if (const std::optional<FrameAxes> frame = sampled ? trees.partner.frame : partner_frame(own(a), own(b), bs.tree)) {
+      if (const std::optional<FrameAxes> frame = partner_frame(own(a), own(b), bs.tree)) {
         a_frame.emplace(as.tree, own(a), *frame);
         b_frame.emplace(bs.tree, own(b), *frame);
         as.frame = &*a_frame;
@@ -292,20 +291,15 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
       }
       if (nodes_may_meet(as, 0, bs, 0)) meeting_pairs(grid, as, bs, NodePair{0, 0, 0, 0}, sink, work, stop, wide);
     }
+  Partners p;
   if (work.over.load()) {
-    Partners p;
     p.gave_up = true;
     return p;
   }
-  return partners_from(sink, n);
-}
-
-Partners partners_from(const MeetingPairs& pairs, std::size_t n) {
-  Partners p;
   // Counting sort by triangle, then each list ascending (lists are short,
   // and the result does not depend on the order pairs were found in).
   p.begin.assign(n + 1, 0);
-  for (const auto& local : pairs)
+  for (const auto& local : sink)
     for (const auto& [x, y] : local) {
       ++p.begin[x + 1];
       ++p.begin[y + 1];
@@ -313,7 +307,7 @@ Partners partners_from(const MeetingPairs& pairs, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) p.begin[i + 1] += p.begin[i];
   p.ids.resize(p.begin[n]);
   std::vector<std::uint32_t> fill(p.begin.begin(), p.begin.end() - 1);
-  for (const auto& local : pairs)
+  for (const auto& local : sink)
     for (const auto& [x, y] : local) {
       p.ids[fill[x]++] = y;
       p.ids[fill[y]++] = x;

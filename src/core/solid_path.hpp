@@ -40,7 +40,6 @@
 #include <span>
 #include <vector>
 
-#include "core/contact_search.hpp"
 #include "core/operand_trees.hpp"
 #include "core/principal_frame.hpp"
 #include "core/solid_check.hpp"
@@ -78,11 +77,6 @@ std::optional<FrameAxes> partner_frame(std::span<const std::array<IntPoint, 3>> 
 /// (TriangleTree::kLeaf^2 each) pass `budget`.
 Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std::size_t n,
                        const std::atomic<bool>& stop, std::size_t budget = SIZE_MAX);
-
-/// The Partners of the n triangles whose meeting pairs (each once, either
-/// way round) are `pairs`. Deterministic: sorted, whatever order the pairs
-/// came in.
-Partners partners_from(const MeetingPairs& pairs, std::size_t n);
 
 /// The budget of a partner search started before the proof of its premise
 /// ended (boolean.cpp), per input triangle (plus kSpeculativeAllowance): the

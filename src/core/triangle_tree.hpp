@@ -37,8 +37,6 @@ struct Box32 {
   std::array<std::int32_t, 3> hi{std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::min(),
                                  std::numeric_limits<std::int32_t>::min()};
 
-  bool operator==(const Box32&) const = default;
-
   void add(const Box32& b) {
     for (int a = 0; a < 3; ++a) {
       lo[a] = std::min(lo[a], b.lo[a]);
@@ -75,22 +73,6 @@ class TriangleTree {
   /// The tree over triangles 0 .. boxes.size() - 1 with these boxes.
   /// Parallel (oneTBB); the result does not depend on the thread count.
   explicit TriangleTree(std::span<const Box32> boxes);
-  /// The same with the Morton cells laid over `key_bounds` (a box holding
-  /// every box) instead of the boxes' own bounding box (bounds(boxes)).
-  TriangleTree(std::span<const Box32> boxes, const Box32& key_bounds);
-  /// The bounding box of the boxes (empty for none).
-  static Box32 bounds(std::span<const Box32> boxes);
-  /// Whether the Morton cells over bounding boxes a and b have the same
-  /// size: a tree keyed over either is as fine as over the other.
-  static bool same_cell_size(const Box32& a, const Box32& b);
-  /// The tree over a's triangles and then b's (b's item i becomes item
-  /// a.size() + i), keyed over the same key_bounds (required): their orders
-  /// merged, without a sort (the tree TriangleTree(boxes, key_bounds) over
-  /// all their boxes would be). Parallel (oneTBB); the result does not
-  /// depend on the thread count.
-  static TriangleTree merged(const TriangleTree& a, const TriangleTree& b);
-  /// The box the tree's Morton cells were laid over.
-  const Box32& key_bounds() const { return key_bounds_; }
 
   std::size_t size() const { return item_.size(); }
   bool empty() const { return item_.empty(); }
@@ -176,12 +158,6 @@ class TriangleTree {
     return (1u << std::min(kLeaf, size() - (leaf_node - first_leaf()) * kLeaf)) - 1;
   }
 
-  /// The leaf blocks and node boxes of the triangles in item_'s order,
-  /// box_of_slot(s) the box of item_[s].
-  template <typename BoxOfSlot>
-  void lay_out(BoxOfSlot&& box_of_slot);
-
-  Box32 key_bounds_;                 ///< where the Morton cells lie
   std::vector<std::uint32_t> item_;  ///< triangles in Morton order
   std::vector<LeafBlock> block_;     ///< their boxes, kLeaf per block (empty boxes past the end)
   std::vector<Box32> node_;          ///< the tree's boxes, heap order

@@ -7,8 +7,6 @@
 #include <gmpxx.h>
 #include <gtest/gtest.h>
 
-#include <tbb/task_arena.h>
-
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -117,45 +115,6 @@ int gmp_box_side(const Box32& box, const IntPoint& o, const std::array<std::int6
     side = s;
   }
   return side;
-}
-
-TEST(TriangleTree, MergedIsTheTreeOverBothKeyedAlike) {
-  // Two trees keyed over the same bounds merge into the tree over all their
-  // boxes (b's items after a's) with those bounds: the same order, boxes and
-  // nodes, at any thread count. Many equal keys (a small lattice: ties go
-  // to the lower item, a's), empty sides, blocks of the parallel merge.
-  std::mt19937 rng(11);
-  for (const auto& [na, nb] : std::vector<std::pair<std::size_t, std::size_t>>{
-           {0, 5}, {5, 0}, {1, 1}, {9, 300}, {1000, 40}, {20000, 17000}}) {
-    std::vector<Box32> all(na + nb);
-    for (Box32& b : all) b = random_box(rng, na + nb > 5000 ? 100000 : 30, 6);
-    const std::vector<Box32> a(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(na));
-    const std::vector<Box32> b(all.begin() + static_cast<std::ptrdiff_t>(na), all.end());
-    const Box32 bounds = TriangleTree::bounds(all);
-    const TriangleTree want(all, bounds);
-    for (const int threads : {1, 3}) {
-      TriangleTree got;
-      tbb::task_arena(threads).execute([&] { got = TriangleTree::merged(TriangleTree(a, bounds), TriangleTree(b, bounds)); });
-      ASSERT_EQ(got.size(), want.size());
-      ASSERT_EQ(got.key_bounds(), bounds);
-      for (std::size_t s = 0; s < want.size(); ++s) {
-        ASSERT_EQ(got.item(s), want.item(s)) << na << " + " << nb << ", slot " << s;
-        ASSERT_EQ(got.box(s), want.box(s));
-      }
-      ASSERT_EQ(got.depth(), want.depth());
-      for (std::size_t n = 0; n < 2 * (want.first_leaf() + 1) - 1; ++n) ASSERT_EQ(got.node(n), want.node(n)) << n;
-    }
-  }
-  // The cells are as fine over either bounds iff the largest extents (of
-  // twice the centres: 2000 and 2040 < 2^11 <= 2200) have the same bit width.
-  Box32 small, large;
-  small.lo = {0, 0, 0};
-  small.hi = {1000, 10, 10};
-  large = small;
-  large.hi[0] = 1020;
-  EXPECT_TRUE(TriangleTree::same_cell_size(small, large));
-  large.hi[0] = 1100;
-  EXPECT_FALSE(TriangleTree::same_cell_size(small, large));
 }
 
 TEST(TriangleTree, BoxOfIsTheCornersMinimumAndMaximumPerAxis) {
