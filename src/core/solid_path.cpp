@@ -111,9 +111,14 @@ template <bool swap, bool Wide, bool Framed>
     // one or two pairs, whose own tests cost about as much (the bunny pair:
     // 1.5 M more instructions with the test from two pairs on).
     if (more_than_two_bits(m) && box_clearly_beside(y_box, tx[0], nx)) continue;
+    // Most of the rest lie beside x's plane too: their sides in double first.
+    const PlaneSideFilter x_plane(tx[0], nx);
     for (; m != 0; m &= m - 1) {
       const std::uint32_t iy = y_base + Y.item(yb + static_cast<std::size_t>(std::countr_zero(m)));
-      if (apart_triangles_meet(tx, nx, grid.corners[iy]))
+      const std::array<IntPoint, 3>& ty = grid.corners[iy];
+      const CornerSigns sides = x_plane.signs(ty);
+      if (sides.strictly_one_side()) continue;
+      if (apart_triangles_meet(tx, nx, ty, sides))
         sink.local().emplace_back(swap ? iy : ix, swap ? ix : iy);
     }
   }

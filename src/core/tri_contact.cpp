@@ -3,6 +3,7 @@
 //   orient3d: 2x2 minors < 2^53, terms < 2^79, sum < 2^81  -> __int128;
 //   orient2d: products < 2^52, difference < 2^53           -> int64;
 //   chord directions |s| * |d|: < 2^81 * 2^26 * 2        -> __int128.
+#include <cassert>
 #include <cstdint>
 
 #include "core/solid_check.hpp"
@@ -234,36 +235,38 @@ bool triangles_meet_improperly(const ContactTriangle& ta, const ContactTriangle&
 
 namespace {
 
-/// apart_triangles_meet, with b's normal from normal_of_b() when the first
-/// test leaves the pair (the solid path's candidates mostly end there, and
-/// need no normal of b).
-template <typename NormalOfB>
-bool apart_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na, const std::array<IntPoint, 3>& b,
-                NormalOfB&& normal_of_b) {
-  // b against a's plane first (beside_plane).
-  const Sides b_side = sides(a, na, b);
-  const i128(&sb)[3] = b_side.s;
-  if (strictly_one_side(sb)) return false;
-  const std::array<std::int64_t, 3> nb = normal_of_b();
+/// The rest of apart_triangles_meet once b's corners are known to meet a's
+/// plane (sb: their signs against it, not all equal and non-zero).
+bool meet_from_signs(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
+                     const std::array<IntPoint, 3>& b, const std::array<std::int64_t, 3>& nb, const int (&sb)[3]) {
   const Sides a_side = sides(b, nb, a);
   const i128(&sa)[3] = a_side.s;
   if (strictly_one_side(sa)) return false;
   // a in b's plane: then b is in a's too (sb all zero), coplanar triangles.
   if (sa[0] == 0 && sa[1] == 0 && sa[2] == 0) return coplanar_meet(a, b, Projection(dominant_axis(na)));
-  const int signs_a[3] = {sign(sa[0]), sign(sa[1]), sign(sa[2])}, signs_b[3] = {sign(sb[0]), sign(sb[1]), sign(sb[2])};
-  return straddling_triangles_meet(a, b, signs_a, signs_b);
+  const int signs_a[3] = {sign(sa[0]), sign(sa[1]), sign(sa[2])};
+  return straddling_triangles_meet(a, b, signs_a, sb);
 }
 
 }  // namespace
 
 bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
                           const std::array<IntPoint, 3>& b, const std::array<std::int64_t, 3>& nb) {
-  return apart_meet(a, na, b, [&] { return nb; });
+  // b against a's plane first (beside_plane).
+  const Sides b_side = sides(a, na, b);
+  const i128(&sb)[3] = b_side.s;
+  if (strictly_one_side(sb)) return false;
+  const int signs_b[3] = {sign(sb[0]), sign(sb[1]), sign(sb[2])};
+  return meet_from_signs(a, na, b, nb, signs_b);
 }
 
 bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
-                          const std::array<IntPoint, 3>& b) {
-  return apart_meet(a, na, b, [&] { return grid_normal(b[0], b[1], b[2]); });
+                          const std::array<IntPoint, 3>& b, const CornerSigns& sb) {
+  assert(!sb.strictly_one_side());
+  const int signs_b[3] = {sb.s[0], sb.s[1], sb.s[2]};
+  return meet_from_signs(a, na, b, grid_normal(b[0], b[1], b[2]), signs_b);
 }
+
+int PlaneSideFilter::exact_sign(const IntPoint& p) const { return sign(grid_side(origin_, normal_, p)); }
 
 }  // namespace ember::core

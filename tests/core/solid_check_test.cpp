@@ -177,12 +177,19 @@ TEST(TriangleContact, RandomUnsharedLatticePairsMatchRationalOracle) {
   expect_random_lattice_pairs_match_oracle(-2, 1, 5, 30000, true);
 }
 
-TEST(TriangleContact, AnyContactOfDifferentOperandsMatchesRationalOracle) {
-  // triangles_meet (the solid path's broad phase): any common point counts,
-  // shared positions included. Half the pairs share a vertex position.
-  std::mt19937 rng(7);
+/// meet(a, b) against the rational oracle where any common point counts,
+/// on random pairs from the 4x4x4 lattice origin + {0, 1, 2, 3} step per
+/// axis (touching, corners on planes, edges through edges in every
+/// arrangement), half of them sharing a vertex position.
+template <typename Meet>
+void expect_any_contact_matches_oracle(std::int64_t origin, std::int64_t step, std::uint32_t seed, Meet&& meet) {
+  std::mt19937 rng(seed);
   std::uniform_int_distribution<int> c(0, 3);
-  const auto random_point = [&] { return IntPoint{c(rng), c(rng), c(rng)}; };
+  const auto coordinate = [&] { return origin + c(rng) * step; };
+  const auto random_point = [&] {
+    const std::int64_t x = coordinate(), y = coordinate();
+    return IntPoint{x, y, coordinate()};
+  };
   int tested = 0, met = 0, mismatches = 0;
   while (tested < 20000) {
     const Tri a{{random_point(), random_point(), random_point()}};
@@ -192,14 +199,19 @@ TEST(TriangleContact, AnyContactOfDifferentOperandsMatchesRationalOracle) {
         grid_normal(b[0], b[1], b[2]) == std::array<std::int64_t, 3>{})
       continue;
     ++tested;
-    const bool m = core::triangles_meet(a, b);
-    EXPECT_EQ(m, core::triangles_meet(b, a));
+    const bool m = meet(a, b);
+    EXPECT_EQ(m, meet(b, a));
     met += m;
     mismatches += m != oracle_meet(a, b, true);
   }
-  EXPECT_EQ(mismatches, 0);
-  EXPECT_GT(met, 2000);
-  EXPECT_LT(met, tested - 2000);
+  EXPECT_EQ(mismatches, 0) << "step " << step;
+  EXPECT_GT(met, 2000) << "step " << step;
+  EXPECT_LT(met, tested - 2000) << "step " << step;
+}
+
+TEST(TriangleContact, AnyContactOfDifferentOperandsMatchesRationalOracle) {
+  // triangles_meet (the contact test of triangles of different operands).
+  expect_any_contact_matches_oracle(0, 1, 7, [](const Tri& a, const Tri& b) { return core::triangles_meet(a, b); });
 }
 
 /// The exact side of p against the plane of t, in GMP integers.
@@ -254,6 +266,81 @@ TEST(TriangleContact, BesidePlaneMatchesTheGmpSides) {
     EXPECT_FALSE(core::beside_plane(a, na, b));
   }
   EXPECT_GT(on_plane_cases, 5000);
+}
+
+/// The pair test the partner search runs: PlaneSideFilter's signs of b
+/// against a's plane, then apart_triangles_meet from those signs.
+bool meet_from_filtered_signs(const Tri& a, const Tri& b) {
+  const std::array<std::int64_t, 3> na = grid_normal(a[0], a[1], a[2]);
+  const core::CornerSigns sides = core::PlaneSideFilter(a[0], na).signs(b);
+  return !sides.strictly_one_side() && core::apart_triangles_meet(a, na, b, sides);
+}
+
+TEST(TriangleContact, PlaneSideFilterSignsAreTheGmpSigns) {
+  // PlaneSideFilter decides a corner in double only outside its error
+  // margin, else exactly: its signs are GMP's, always. Random triangles from
+  // tiny to full-range coordinates (normals near 2^53, products near 2^80,
+  // rounded in double).
+  for (const std::int64_t range : {std::int64_t{2}, std::int64_t{1} << 12, kCoordLimit}) {
+    std::mt19937 rng(static_cast<std::uint32_t>(range) + 11);
+    std::uniform_int_distribution<std::int64_t> c(-range, range);
+    const auto pt = [&] { return IntPoint{c(rng), c(rng), c(rng)}; };
+    int beside = 0, on_plane = 0;
+    for (int n = 0; n < 30000; ++n) {
+      const Tri a{{pt(), pt(), pt()}}, b{{pt(), pt(), pt()}};
+      const std::array<std::int64_t, 3> na = grid_normal(a[0], a[1], a[2]);
+      if (na == std::array<std::int64_t, 3>{}) continue;
+      const core::CornerSigns got = core::PlaneSideFilter(a[0], na).signs(b);
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_EQ(got.s[k], gmp_side(a, b[static_cast<std::size_t>(k)])) << "range " << range;
+        on_plane += got.s[k] == 0;
+      }
+      beside += got.strictly_one_side();
+    }
+    EXPECT_GT(beside, 5000) << "range " << range;
+    if (range == 2) {
+      EXPECT_GT(on_plane, 1000);
+    }
+  }
+  // Corners exactly on the plane, far from a's corners (differences near
+  // 2^25, normals near 2^50: the rounded side is not zero, and must stay
+  // within the margin): sign 0.
+  std::mt19937 rng(23);
+  std::uniform_int_distribution<std::int64_t> at(-(1 << 24), 1 << 24), d(-(1 << 23), 1 << 23);
+  int on_plane = 0;
+  for (int n = 0; n < 20000; ++n) {
+    const IntPoint a0{at(rng), at(rng), at(rng)}, d1{d(rng), d(rng), d(rng)}, d2{d(rng), d(rng), d(rng)};
+    const Tri a{{a0, {a0.x + d1.x, a0.y + d1.y, a0.z + d1.z}, {a0.x + d2.x, a0.y + d2.y, a0.z + d2.z}}};
+    const std::array<std::int64_t, 3> na = grid_normal(a[0], a[1], a[2]);
+    if (na == std::array<std::int64_t, 3>{}) continue;
+    const Tri b{{{a0.x + d1.x + d2.x, a0.y + d1.y + d2.y, a0.z + d1.z + d2.z},
+                 {a0.x - d1.x - d2.x, a0.y - d1.y - d2.y, a0.z - d1.z - d2.z},
+                 {at(rng), at(rng), at(rng)}}};
+    const core::CornerSigns got = core::PlaneSideFilter(a[0], na).signs(b);
+    ASSERT_EQ(got.s[0], 0);
+    ASSERT_EQ(got.s[1], 0);
+    ASSERT_EQ(got.s[2], gmp_side(a, b[2]));
+    ++on_plane;
+  }
+  EXPECT_GT(on_plane, 19000);
+  // Sides of magnitude 1-3 against a normal of 2^50, (1, -P, P Q), whose
+  // products cancel to them: left to the exact side.
+  constexpr std::int64_t P = (std::int64_t{1} << 25) - 1, Q = (std::int64_t{1} << 25) - 3;
+  const Tri a{{IntPoint{0, 0, 0}, IntPoint{P, 1, 0}, IntPoint{0, Q, 1}}};
+  const std::array<std::int64_t, 3> na = grid_normal(a[0], a[1], a[2]);
+  ASSERT_EQ(na, (std::array<std::int64_t, 3>{1, -P, P * Q}));
+  const Tri near{{IntPoint{1, Q, 1}, IntPoint{-3, Q, 1}, IntPoint{0, Q, 1}}};
+  const core::CornerSigns got = core::PlaneSideFilter(a[0], na).signs(near);
+  EXPECT_EQ(got.s[0], 1);
+  EXPECT_EQ(got.s[1], -1);
+  EXPECT_EQ(got.s[2], 0);
+}
+
+TEST(TriangleContact, MeetFromFilteredSignsMatchesRationalOracle) {
+  // The partner search's pair test, on the small lattice and stretched over
+  // the whole grid (normals near 2^53: the filter's double sides rounded).
+  expect_any_contact_matches_oracle(0, 1, 5, meet_from_filtered_signs);
+  expect_any_contact_matches_oracle(-kCoordLimit, (2 * kCoordLimit - 1) / 3, 6, meet_from_filtered_signs);
 }
 
 TEST(TriangleContact, RandomFullRangeTrianglesMatchRationalOracle) {
