@@ -59,56 +59,90 @@ void unite(Parents& parent, std::uint32_t a, std::uint32_t b) {
   }
 }
 
-/// Calls f(i, j) for each kept triangle i in [begin, end) and each kept
-/// neighbour j > i: neighbours are mutual (both ends of a manifold edge), so
-/// every pair once.
-template <typename F>
-void each_kept_pair(const GridTriangles& grid, const std::vector<char>& keep, std::size_t begin, std::size_t end,
-                    F&& f) {
+/// Calls f(i, j) for each kept local triangle i in [begin, end) and each
+/// kept neighbour j > i in [0, count): triangle first + i of the grid, its
+/// neighbours mutual (both ends of a manifold edge), so every pair once.
+template <typename Keep, typename F>
+void each_kept_pair(const GridTriangles& grid, std::uint32_t first, std::size_t count, const Keep& keep,
+                    std::size_t begin, std::size_t end, F&& f) {
   for (std::size_t i = begin; i != end; ++i) {
-    if (!keep[i]) continue;
-    for (const std::uint32_t j : grid.neighbors[i])
-      if (j != kNoNeighbor && j > i && keep[j]) f(static_cast<std::uint32_t>(i), j);
+    if (!keep(first + i)) continue;
+    for (const std::uint32_t n : grid.neighbors[first + i]) {
+      const std::uint32_t j = n - first;  // wraps past count for ids below first and kNoNeighbor
+      if (j < count && j > i && keep(n)) f(static_cast<std::uint32_t>(i), j);
+    }
   }
 }
 
-/// The serial pass: the same finds, links by plain stores, for one thread
-/// (the concurrent pass costs 1.5x its instructions there).
-std::vector<std::uint32_t> serial_components(const GridTriangles& grid, const std::vector<char>& keep) {
-  const std::size_t n = keep.size();
-  Parents parent(n);
-  for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<std::uint32_t>(i);
-  each_kept_pair(grid, keep, 0, n, [&](std::uint32_t i, std::uint32_t j) {
-    const std::uint32_t ri = find(parent, i), rj = find(parent, j);
-    if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
-  });
-  // In ascending order every smaller entry already holds its root.
-  for (std::size_t i = 0; i < n; ++i) parent[i] = parent[parent[i]];
+/// The serial pass, for one thread: a flood fill from each kept triangle
+/// not yet reached, in ascending order, so each component's first triangle
+/// is its smallest id (the union-find's answer; the fill costs about half its
+/// instructions, and the concurrent union-find 1.5x its own).
+template <typename Keep>
+Parents serial_components(const GridTriangles& grid, std::uint32_t first, std::size_t count, const Keep& keep) {
+  constexpr std::uint32_t kUnreached = UINT32_MAX;
+  Parents root(count, kUnreached);
+  std::vector<std::uint32_t> stack;
+  for (std::size_t s = 0; s < count; ++s) {
+    if (root[s] != kUnreached || !keep(first + s)) continue;
+    root[s] = static_cast<std::uint32_t>(s);
+    stack.push_back(static_cast<std::uint32_t>(s));
+    while (!stack.empty()) {
+      const std::uint32_t t = stack.back();
+      stack.pop_back();
+      for (const std::uint32_t n : grid.neighbors[first + t]) {
+        const std::uint32_t j = n - first;  // wraps past count for ids below first and kNoNeighbor
+        if (j < count && root[j] == kUnreached && keep(n)) {
+          root[j] = static_cast<std::uint32_t>(s);
+          stack.push_back(j);
+        }
+      }
+    }
+  }
+  return root;
+}
+
+/// Components of the kept triangles first .. first + count - 1, joined
+/// across manifold edges inside that range: per kept triangle first + i,
+/// entry i is the smallest id of its component.
+template <typename Keep>
+std::vector<std::uint32_t> components(const GridTriangles& grid, std::uint32_t first, std::size_t count,
+                                      const Keep& keep) {
+  Parents parent;
+  if (tbb::this_task_arena::max_concurrency() == 1) {
+    parent = serial_components(grid, first, count, keep);
+  } else {
+    parent.resize(count);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) parent[i] = static_cast<std::uint32_t>(i);
+    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+      each_kept_pair(grid, first, count, keep, r.begin(), r.end(),
+                     [&](std::uint32_t i, std::uint32_t j) { unite(parent, i, j); });
+    });
+    // Every root is final now: point each kept entry at it (find only reads
+    // and halves paths, which stays correct under the concurrent halving).
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        if (!keep(first + i)) continue;
+        const std::uint32_t root = find(parent, static_cast<std::uint32_t>(i));
+        std::atomic_ref<std::uint32_t>(parent[i]).store(root, std::memory_order_relaxed);
+      }
+    });
+  }
+  if (first != 0)
+    for (std::uint32_t& p : parent) p += first;
   return parent;
 }
 
 }  // namespace
 
 std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, const std::vector<char>& keep) {
-  if (tbb::this_task_arena::max_concurrency() == 1) return serial_components(grid, keep);
-  const std::size_t n = keep.size();
-  Parents parent(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) parent[i] = static_cast<std::uint32_t>(i);
-  });
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    each_kept_pair(grid, keep, r.begin(), r.end(), [&](std::uint32_t i, std::uint32_t j) { unite(parent, i, j); });
-  });
-  // Every root is final now: point each kept entry at it (find only reads
-  // and halves paths, which stays correct under the concurrent halving).
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      if (!keep[i]) continue;
-      const std::uint32_t root = find(parent, static_cast<std::uint32_t>(i));
-      std::atomic_ref<std::uint32_t>(parent[i]).store(root, std::memory_order_relaxed);
-    }
-  });
-  return parent;
+  return components(grid, 0, keep.size(), [&](std::size_t i) { return keep[i] != 0; });
+}
+
+std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, std::uint32_t first, std::size_t count) {
+  return components(grid, first, count, [](std::size_t) { return true; });
 }
 
 namespace {
@@ -179,12 +213,18 @@ SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint
   if (contacts.gave_up) return {SolidVerdict::TooComplex, 0, 0};
   // One representative per component across manifold edges: its smallest
   // id, the first member in order.
-  std::vector<char> keep(grid.neighbors.size(), 0);
-  for (const std::uint32_t m : members) keep[m] = 1;
-  const std::vector<std::uint32_t> component = neighbour_components(grid, keep);
   std::vector<std::uint32_t> reps;
-  for (const std::uint32_t m : members)
-    if (component[m] == m) reps.push_back(m);
+  if (consecutive) {  // the operand's range of ids alone
+    const std::vector<std::uint32_t> component = neighbour_components(grid, members.front(), members.size());
+    for (const std::uint32_t m : members)
+      if (component[m - members.front()] == m) reps.push_back(m);
+  } else {
+    std::vector<char> keep(grid.neighbors.size(), 0);
+    for (const std::uint32_t m : members) keep[m] = 1;
+    const std::vector<std::uint32_t> component = neighbour_components(grid, keep);
+    for (const std::uint32_t m : members)
+      if (component[m] == m) reps.push_back(m);
+  }
   // With the operand's tree (its item i is triangle members.front() + i),
   // one tree query per trace; a trace that found no non-degenerate path
   // there, or a proof without a tree, scans the root soup (classify_polygon):

@@ -433,27 +433,43 @@ TEST(NeighbourComponents, MatchTheSerialAnswerAtAnyThreadCount) {
     std::vector<char> keep(n);
     for (char& k : keep) k = rng() % 8 != 0;
     // Expected: breadth-first search from each smallest unvisited kept id.
-    std::vector<std::uint32_t> expected(n, UINT32_MAX);
-    for (std::size_t s = 0; s < n; ++s) {
-      if (!keep[s] || expected[s] != UINT32_MAX) continue;
-      std::vector<std::size_t> queue{s};
-      expected[s] = static_cast<std::uint32_t>(s);
-      for (std::size_t q = 0; q < queue.size(); ++q)
-        for (const std::uint32_t j : grid.neighbors[queue[q]])
-          if (j != core::kNoNeighbor && keep[j] && expected[j] == UINT32_MAX) {
-            expected[j] = static_cast<std::uint32_t>(s);
-            queue.push_back(j);
-          }
-    }
+    const auto components_by_search = [&](const std::vector<char>& kept) {
+      std::vector<std::uint32_t> expected(n, UINT32_MAX);
+      for (std::size_t s = 0; s < n; ++s) {
+        if (!kept[s] || expected[s] != UINT32_MAX) continue;
+        std::vector<std::size_t> queue{s};
+        expected[s] = static_cast<std::uint32_t>(s);
+        for (std::size_t q = 0; q < queue.size(); ++q)
+          for (const std::uint32_t j : grid.neighbors[queue[q]])
+            if (j != core::kNoNeighbor && kept[j] && expected[j] == UINT32_MAX) {
+              expected[j] = static_cast<std::uint32_t>(s);
+              queue.push_back(j);
+            }
+      }
+      return expected;
+    };
+    const std::vector<std::uint32_t> expected = components_by_search(keep);
+    // An operand's range of ids (the proof's form): the middle half.
+    const std::size_t first = n / 4, count = n - n / 2;
+    std::vector<char> in_range(n, 0);
+    std::fill(in_range.begin() + static_cast<std::ptrdiff_t>(first),
+              in_range.begin() + static_cast<std::ptrdiff_t>(first + count), 1);
+    const std::vector<std::uint32_t> expected_range = components_by_search(in_range);
     for (const int threads : {1, 2, 4, 8}) {
-      std::vector<std::uint32_t> got;
-      tbb::task_arena(threads).execute([&] { got = core::neighbour_components(grid, keep); });
+      std::vector<std::uint32_t> got, got_range;
+      tbb::task_arena(threads).execute([&] {
+        got = core::neighbour_components(grid, keep);
+        got_range = core::neighbour_components(grid, static_cast<std::uint32_t>(first), count);
+      });
       ASSERT_EQ(got.size(), n);
       for (std::size_t i = 0; i < n; ++i) {
         if (keep[i]) {
           ASSERT_EQ(got[i], expected[i]) << "n " << n << ", triangle " << i << ", threads " << threads;
         }
       }
+      ASSERT_EQ(got_range.size(), count);
+      for (std::size_t i = 0; i < count; ++i)
+        ASSERT_EQ(got_range[i], expected_range[first + i]) << "n " << n << ", triangle " << first + i << ", threads " << threads;
     }
   }
 }
