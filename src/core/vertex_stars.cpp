@@ -58,17 +58,17 @@ bool star_is_embedded(std::span<const ContactTriangle> tris, std::span<const std
     t = next;
   }
   if (t != t0) return false;  // the walk runs on: more triangles than corners in the cycle
-  for (std::size_t i = 0; i < valence; ++i) {
-    const std::array<std::int64_t, 3>& n = *spokes[i].n;
-    if (i128(d[0]) * n[0] + i128(d[1]) * n[1] + i128(d[2]) * n[2] <= 0) return false;
-  }
+  // Every normal on d's side, and the spokes once around d: one pass.
   // Halves: upper (0, pi), lower [pi, 2 pi], with e_0 at angle 0; e is in
   // the upper one iff d . (e_0 x e) > 0 (e_0 x e: differences < 2^26, so
   // each component < 2^53 fits int64, and every product is one 64 x 64-bit
   // multiplication).
   const std::array<std::int64_t, 3>& e0 = spokes[0].e;
   bool lower = false;
-  for (std::size_t i = 1; i < valence; ++i) {
+  for (std::size_t i = 0; i < valence; ++i) {
+    const std::array<std::int64_t, 3>& n = *spokes[i].n;
+    if (i128(d[0]) * n[0] + i128(d[1]) * n[1] + i128(d[2]) * n[2] <= 0) return false;
+    if (i == 0) continue;
     const std::array<std::int64_t, 3>& e = spokes[i].e;
     const std::int64_t c0 = e0[1] * e[2] - e0[2] * e[1], c1 = e0[2] * e[0] - e0[0] * e[2], c2 = e0[0] * e[1] - e0[1] * e[0];
     // d . (e_0 x e) = 0: e's projection is parallel to e_0's, at pi or at a
