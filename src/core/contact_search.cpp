@@ -185,11 +185,18 @@ class Search {
     if (ab >= tree().size()) return;  // a leaf past the last triangle (self() does not test its box)
     // a's triangles whose boxes meet b's node box, eight at a time (one test
     // per triangle of a instead of one per pair).
-    for (unsigned near = tree().overlap_mask_in<Wide>(a, tree().node(b)); near != 0; near &= near - 1) {
+    const unsigned near_b = tree().overlap_mask_in<Wide>(a, tree().node(b));
+    // The box pairs examined, for the budget: each such triangle of a against
+    // b's slots (within one leaf, the slots after it), counted here at once.
+    if (a != b) {
+      examined += static_cast<std::size_t>(std::popcount(near_b)) * (be - bb);
+    } else {
+      for (unsigned m = near_b; m != 0; m &= m - 1) examined += be - std::min(be, ab + std::countr_zero(m) + 1);
+    }
+    for (unsigned near = near_b; near != 0; near &= near - 1) {
       const std::size_t i = ab + static_cast<std::size_t>(std::countr_zero(near));
       const Box32 box = tree().box(i);
       const std::size_t from = a == b ? i + 1 : bb;
-      examined += be - std::min(be, from);
       // Within one leaf only the slots after i. Triangles sharing a vertex
       // whose star is certified embedded never meet improperly
       // (triangles_meet_improperly's first answer): when all three of i's
