@@ -108,7 +108,7 @@ Box32 box_of(const std::array<IntPoint, 3>& t) {
 }
 
 Box32 enclosing_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
-  constexpr double kMin = std::numeric_limits<std::int32_t>::min(), kMax = std::numeric_limits<std::int32_t>::max();
+  constexpr double kMin = -kQueryLimit, kMax = kQueryLimit;
   Box32 b;
   for (int a = 0; a < 3; ++a) {
     b.lo[a] = static_cast<std::int32_t>(std::clamp(std::floor(lo[a]), kMin, kMax));

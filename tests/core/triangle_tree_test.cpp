@@ -80,20 +80,26 @@ TEST(TriangleTree, QueriesFindExactlyTheMeetingBoxes) {
 }
 
 TEST(TriangleTree, ExtremeCoordinatesAndClampedQueries) {
-  // Boxes at the grid's limit, and queries clamped to the whole int32 range
-  // (enclosing_box of a huge double box): the last leaf's empty slots must
+  // Boxes at the grid's limit, and the widest queries the tree takes
+  // (query_in_range: not the whole int32 range along x; enclosing_box of a
+  // huge double box clamps to kQueryLimit): the last leaf's empty slots must
   // not answer.
   constexpr std::int32_t lim = 1 << 25, imin = std::numeric_limits<std::int32_t>::min(),
-                         imax = std::numeric_limits<std::int32_t>::max();
+                         imax = std::numeric_limits<std::int32_t>::max(), q = core::kQueryLimit;
   std::mt19937 rng(9);
   std::vector<Box32> boxes(13);
   for (Box32& b : boxes) b = random_box(rng, lim - (1 << 20), 1 << 20);
   boxes[0] = {{-lim, -lim, -lim}, {-lim, -lim, -lim}};
   boxes[1] = {{lim, lim, lim}, {lim, lim, lim}};
-  std::vector<Box32> queries = {{{imin, imin, imin}, {imax, imax, imax}},
+  const Box32 clamped = core::enclosing_box({-1e300, -1e300, -1e300}, {1e300, 1e300, 1e300});
+  EXPECT_EQ(clamped.lo, (std::array<std::int32_t, 3>{-q, -q, -q}));
+  EXPECT_EQ(clamped.hi, (std::array<std::int32_t, 3>{q, q, q}));
+  std::vector<Box32> queries = {{{-q, imin, imin}, {q, imax, imax}},
                                 {{imin, imin, imin}, {-lim, -lim, -lim}},
                                 {{lim, lim, lim}, {imax, imax, imax}},
-                                core::enclosing_box({-1e300, -1e300, -1e300}, {1e300, 1e300, 1e300})};
+                                {{imin + 1, imin, imin}, {imax, imax, imax}},
+                                clamped};
+  for (const Box32& b : queries) ASSERT_TRUE(core::query_in_range(b));
   for (int k = 0; k < 100; ++k) queries.push_back(random_box(rng, lim, 1 << 24));
   check_tree(boxes, queries);
   std::vector<std::uint32_t> all;
