@@ -189,8 +189,10 @@ template <bool Wide, bool Framed>
   while (top > 0) {
     const NodePair v = stack[--top];
     if (v.da == A.depth() && v.db == B.depth()) {
-      if (A.leaf_slots(v.a).first < A.size() && B.leaf_slots(v.b).first < B.size())  // else an empty leaf
-        leaf_pair<Wide, Framed>(grid, as, v.a, bs, v.b, sink);
+      // Both leaves hold triangles: an empty leaf's box is empty and meets no
+      // box, so no pair with one passed nodes_may_meet.
+      assert(A.leaf_slots(v.a).first < A.size() && B.leaf_slots(v.b).first < B.size());
+      leaf_pair<Wide, Framed>(grid, as, v.a, bs, v.b, sink);
       examined += TriangleTree::kLeaf * TriangleTree::kLeaf;
       if (examined >= Work::kFlush && (work.flush(examined) || stop.load(std::memory_order_relaxed))) return;
       continue;
