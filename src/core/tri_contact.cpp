@@ -238,14 +238,14 @@ namespace {
 /// The rest of apart_triangles_meet once b's corners are known to meet a's
 /// plane (sb: their signs against it, not all equal and non-zero).
 bool meet_from_signs(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
-                     const std::array<IntPoint, 3>& b, const std::array<std::int64_t, 3>& nb, const int (&sb)[3]) {
+                     const std::array<IntPoint, 3>& b, const std::array<std::int64_t, 3>& nb, const CornerSigns& sb) {
   const Sides a_side = sides(b, nb, a);
   const i128(&sa)[3] = a_side.s;
   if (strictly_one_side(sa)) return false;
   // a in b's plane: then b is in a's too (sb all zero), coplanar triangles.
   if (sa[0] == 0 && sa[1] == 0 && sa[2] == 0) return coplanar_meet(a, b, Projection(dominant_axis(na)));
   const int signs_a[3] = {sign(sa[0]), sign(sa[1]), sign(sa[2])};
-  return straddling_triangles_meet(a, b, signs_a, sb);
+  return straddling_triangles_meet(a, b, signs_a, sb.s);
 }
 
 }  // namespace
@@ -256,15 +256,13 @@ bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std
   const Sides b_side = sides(a, na, b);
   const i128(&sb)[3] = b_side.s;
   if (strictly_one_side(sb)) return false;
-  const int signs_b[3] = {sign(sb[0]), sign(sb[1]), sign(sb[2])};
-  return meet_from_signs(a, na, b, nb, signs_b);
+  return meet_from_signs(a, na, b, nb, CornerSigns{{sign(sb[0]), sign(sb[1]), sign(sb[2])}});
 }
 
 bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
                           const std::array<IntPoint, 3>& b, const CornerSigns& sb) {
   assert(!sb.strictly_one_side());
-  const int signs_b[3] = {sb.s[0], sb.s[1], sb.s[2]};
-  return meet_from_signs(a, na, b, grid_normal(b[0], b[1], b[2]), signs_b);
+  return meet_from_signs(a, na, b, grid_normal(b[0], b[1], b[2]), sb);
 }
 
 int PlaneSideFilter::exact_sign(const IntPoint& p) const { return sign(grid_side(origin_, normal_, p)); }

@@ -224,6 +224,21 @@ int gmp_side(const Tri& t, const IntPoint& p) {
   return sgn(d);
 }
 
+/// A triangle a with corners up to 2^24 apart anywhere in the grid, and
+/// points exactly on its plane far from a's corners (a0 +- (d1 + d2)): the
+/// normal near 2^50 and the sides' products far past 2^53.
+struct OnPlaneCase {
+  Tri a;
+  IntPoint on, far;
+};
+OnPlaneCase on_plane_case(std::mt19937& rng) {
+  std::uniform_int_distribution<std::int64_t> at(-(1 << 24), 1 << 24), d(-(1 << 23), 1 << 23);
+  const IntPoint a0{at(rng), at(rng), at(rng)}, d1{d(rng), d(rng), d(rng)}, d2{d(rng), d(rng), d(rng)};
+  return {Tri{{a0, {a0.x + d1.x, a0.y + d1.y, a0.z + d1.z}, {a0.x + d2.x, a0.y + d2.y, a0.z + d2.z}}},
+          {a0.x + d1.x + d2.x, a0.y + d1.y + d2.y, a0.z + d1.z + d2.z},
+          {a0.x - d1.x - d2.x, a0.y - d1.y - d2.y, a0.z - d1.z - d2.z}};
+}
+
 TEST(TriangleContact, BesidePlaneMatchesTheGmpSides) {
   // beside_plane (the solid path's cheap rejection) against GMP sides, on a
   // lattice where corners on the plane abound and at full-range coordinates
@@ -251,12 +266,10 @@ TEST(TriangleContact, BesidePlaneMatchesTheGmpSides) {
     EXPECT_LT(apart, tested - tested / 10) << "range " << range;
   }
   std::mt19937 rng(17);
-  std::uniform_int_distribution<std::int64_t> at(-(1 << 24), 1 << 24), d(-(1 << 23), 1 << 23);
+  std::uniform_int_distribution<std::int64_t> at(-(1 << 24), 1 << 24);
   int on_plane_cases = 0;
   for (int n = 0; n < 20000; ++n) {
-    const IntPoint a0{at(rng), at(rng), at(rng)}, d1{d(rng), d(rng), d(rng)}, d2{d(rng), d(rng), d(rng)};
-    const Tri a{{a0, {a0.x + d1.x, a0.y + d1.y, a0.z + d1.z}, {a0.x + d2.x, a0.y + d2.y, a0.z + d2.z}}};
-    const IntPoint on{a0.x + d1.x + d2.x, a0.y + d1.y + d2.y, a0.z + d1.z + d2.z};
+    const auto [a, on, far] = on_plane_case(rng);
     const Tri b{{on, {at(rng), at(rng), at(rng)}, {at(rng), at(rng), at(rng)}}};
     const std::array<std::int64_t, 3> na = grid_normal(a[0], a[1], a[2]);
     if (na == std::array<std::int64_t, 3>{}) continue;
@@ -306,16 +319,13 @@ TEST(TriangleContact, PlaneSideFilterSignsAreTheGmpSigns) {
   // 2^25, normals near 2^50: the rounded side is not zero, and must stay
   // within the margin): sign 0.
   std::mt19937 rng(23);
-  std::uniform_int_distribution<std::int64_t> at(-(1 << 24), 1 << 24), d(-(1 << 23), 1 << 23);
+  std::uniform_int_distribution<std::int64_t> at(-(1 << 24), 1 << 24);
   int on_plane = 0;
   for (int n = 0; n < 20000; ++n) {
-    const IntPoint a0{at(rng), at(rng), at(rng)}, d1{d(rng), d(rng), d(rng)}, d2{d(rng), d(rng), d(rng)};
-    const Tri a{{a0, {a0.x + d1.x, a0.y + d1.y, a0.z + d1.z}, {a0.x + d2.x, a0.y + d2.y, a0.z + d2.z}}};
+    const auto [a, on, far] = on_plane_case(rng);
     const std::array<std::int64_t, 3> na = grid_normal(a[0], a[1], a[2]);
     if (na == std::array<std::int64_t, 3>{}) continue;
-    const Tri b{{{a0.x + d1.x + d2.x, a0.y + d1.y + d2.y, a0.z + d1.z + d2.z},
-                 {a0.x - d1.x - d2.x, a0.y - d1.y - d2.y, a0.z - d1.z - d2.z},
-                 {at(rng), at(rng), at(rng)}}};
+    const Tri b{{on, far, {at(rng), at(rng), at(rng)}}};
     const core::CornerSigns got = core::PlaneSideFilter(a[0], na).signs(b);
     ASSERT_EQ(got.s[0], 0);
     ASSERT_EQ(got.s[1], 0);
