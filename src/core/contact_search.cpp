@@ -1,4 +1,4 @@
-// Self-contact broad phase (contact_search.hpp): a Morton-ordered BVH with
+// Self-contact broad phase (contact_search.hpp): a Hilbert-ordered BVH with
 // fixed-size leaves in an implicit complete binary tree, traversed against
 // itself.
 #include "core/contact_search.hpp"

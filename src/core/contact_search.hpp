@@ -2,7 +2,7 @@
 // Broad phase of the solid proof's self-contact step (solid_check.hpp, step
 // 1): which pairs of an operand's triangles need the exact contact test.
 //
-// A bounding-volume hierarchy over the triangles in Morton order, traversed
+// A bounding-volume hierarchy over the triangles in Hilbert curve order, traversed
 // against itself: every triangle sits in exactly one leaf, so every pair of
 // overlapping boxes is met exactly once, and a pair of subtrees whose boxes
 // are apart is dismissed in one test. The kd-split it replaces sent a

@@ -16,7 +16,7 @@ namespace ember::core {
 
 /// Built polygons of the triangles near the ones being processed, by id:
 /// a touched triangle's partners are mostly the previous one's (triangles go
-/// in Morton order), so each is built about once per thread while the cache
+/// in curve order), so each is built about once per thread while the cache
 /// stays under kKeep. References stay valid until reset_if_full() empties it.
 class PolygonCache {
  public:

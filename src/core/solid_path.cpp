@@ -418,7 +418,7 @@ class SolidSolver {
     return !failed && !stop_.load();
   }
 
-  /// Step 3: touched triangles, in Morton order per operand (partners repeat
+  /// Step 3: touched triangles, in curve order per operand (partners repeat
   /// from one triangle to the next), in fixed chunks: each chunk's output is
   /// ordered, so the result does not depend on the schedule. False if a
   /// trace failed (or the run was abandoned).
@@ -517,7 +517,7 @@ class SolidSolver {
     Wnv front, back;
   };
 
-  /// The touched triangles of operand o in Morton slots first .. first +
+  /// The touched triangles of operand o in curve slots first .. first +
   /// kChunk - 1, cut and classified into `out`. A piece with an edge on an
   /// input edge whose other triangle is untouched takes that triangle's
   /// winding numbers (solid_path.hpp, 4: nothing else comes near that edge,

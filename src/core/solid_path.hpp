@@ -8,7 +8,7 @@
 // operands most of that work is spent far from the only places where the
 // result differs from the inputs: where triangles of different operands
 // meet. Fig. 11's shortcuts, carried to their end:
-//  1. broad phase: one Morton tree per operand (triangle_tree.hpp); the pairs
+//  1. broad phase: one Hilbert-ordered tree per operand (triangle_tree.hpp); the pairs
 //     of triangles of different operands whose boxes meet. A triangle in no
 //     pair is *untouched*: no other operand's surface comes near it.
 //  2. a touched triangle t is cut by its partners exactly as in a leaf

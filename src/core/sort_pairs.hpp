@@ -1,6 +1,6 @@
 #pragma once
 // Sorting (key, index) pairs: the mesh stage groups corners by edge, the
-// proof orders triangles along a Morton curve, the vertex index buckets
+// proof orders triangles along a Hilbert curve, the vertex index buckets
 // positions, ... all by sorting an array of (integer key, 32-bit index)
 // pairs that was filled in index order. A comparison sort spends ~17
 // compare-and-move steps per element on 10^5 elements (6-9% of a typical

@@ -1,6 +1,6 @@
 #pragma once
-// A bounding-volume hierarchy over grid triangles: the triangles in Morton
-// order of their box centres, kLeaf to a leaf of an implicit complete binary
+// A bounding-volume hierarchy over grid triangles: the triangles in Hilbert
+// curve order of their box centres, kLeaf to a leaf of an implicit complete binary
 // tree (heap order, built bottom-up in parallel). Every triangle sits in
 // exactly one leaf, so a traversal meets every pair of overlapping boxes
 // exactly once. Used by the solid proof's self-contact search
@@ -28,7 +28,7 @@
 namespace ember::core {
 
 // Grid coordinates satisfy |x| <= 2^25 (kCoordLimit): boxes fit int32.
-static_assert(kCoordLimit <= (std::int64_t{1} << 25), "int32 boxes and the Morton code assume |x| <= 2^25");
+static_assert(kCoordLimit <= (std::int64_t{1} << 25), "int32 boxes and the curve keys assume |x| <= 2^25");
 
 /// A closed integer box; default-constructed empty (lo > hi), meeting nothing.
 struct Box32 {
@@ -52,6 +52,10 @@ inline bool overlap(const Box32& a, const Box32& b) {
 }
 
 Box32 box_of(const std::array<IntPoint, 3>& t);
+
+/// The place of cell (x, y, z) (10 bits each) along a 3D Hilbert curve
+/// through the 2^30 cells (the tree's order; 30 bits).
+std::uint32_t hilbert_key(std::uint32_t x, std::uint32_t y, std::uint32_t z);
 
 /// True if the box lies clearly on one side of the plane through grid point
 /// o with normal n (a grid triangle's grid_normal, |n_k| < 2^53): all its
@@ -89,7 +93,7 @@ class TriangleTree {
 
   std::size_t size() const { return item_.size(); }
   bool empty() const { return item_.empty(); }
-  /// The triangle in Morton slot `slot`, and its box.
+  /// The triangle in slot `slot` (curve order), and its box.
   std::uint32_t item(std::size_t slot) const { return item_[slot]; }
   /// Per-leaf data laid out like the leaves' boxes: one Block per filled
   /// leaf, `blocks` resized and each block's slot s written in parallel by
@@ -166,7 +170,7 @@ class TriangleTree {
     std::int32_t hi[3][kLeaf];
   };
 
-  std::vector<std::uint32_t> item_;  ///< triangles in Morton order
+  std::vector<std::uint32_t> item_;  ///< triangles in curve order
   std::vector<LeafBlock> block_;     ///< their boxes, kLeaf per block (empty boxes past the end)
   std::vector<Box32> node_;          ///< the tree's boxes, heap order
   std::size_t leaves_ = 1;

@@ -2,14 +2,17 @@
 // the boxes that meet it (closed boxes: touching counts), leaf by leaf
 // through the vector overlap masks (4 lanes, and 8 where the processor has
 // AVX2) and their portable twin, including boxes and queries at the int32
-// limits and partly filled last leaves; and the box-beside-plane filter
-// against GMP.
+// limits and partly filled last leaves; the box-beside-plane filter
+// against GMP; and the tree's order, a Hilbert curve, against Skilling's
+// transform and by its defining property.
 #include <gmpxx.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <limits>
+#include <set>
 #include <random>
 #include <vector>
 
@@ -145,6 +148,78 @@ TEST(TriangleTree, BoxOfIsTheCornersMinimumAndMaximumPerAxis) {
     check(&IntPoint::y, 1);
     check(&IntPoint::z, 2);
   }
+}
+
+/// The place of (x, y, z) along a Hilbert curve through 2^(3 bits) cells by
+/// J. Skilling's transform ("Programming the Hilbert curve", AIP Conf. Proc.
+/// 707, 2004): the coordinates transposed in place, then interleaved with x
+/// most significant at each level. Written from the paper, independently of
+/// the tree's table.
+std::uint32_t skilling_key(std::uint32_t x, std::uint32_t y, std::uint32_t z, int bits) {
+  std::array<std::uint32_t, 3> v{x, y, z};
+  const std::uint32_t top = 1u << (bits - 1);
+  for (std::uint32_t q = top; q > 1; q >>= 1) {  // undo excess work
+    const std::uint32_t p = q - 1;
+    for (int i = 0; i < 3; ++i) {
+      if (v[i] & q) {
+        v[0] ^= p;  // invert
+      } else {
+        const std::uint32_t t = (v[0] ^ v[i]) & p;  // exchange
+        v[0] ^= t;
+        v[i] ^= t;
+      }
+    }
+  }
+  for (int i = 1; i < 3; ++i) v[i] ^= v[i - 1];  // Gray encode
+  std::uint32_t t = 0;
+  for (std::uint32_t q = top; q > 1; q >>= 1)
+    if (v[2] & q) t ^= q - 1;
+  for (int i = 0; i < 3; ++i) v[i] ^= t;
+  std::uint32_t key = 0;
+  for (int b = bits - 1; b >= 0; --b)
+    for (int i = 0; i < 3; ++i) key = key << 1 | ((v[static_cast<std::size_t>(i)] >> b) & 1u);
+  return key;
+}
+
+TEST(TreeOrder, HilbertKeyIsSkillingsCurve) {
+  std::mt19937 rng(17);
+  std::uniform_int_distribution<std::uint32_t> cell(0, 1023);
+  for (int i = 0; i < 200000; ++i) {
+    const std::uint32_t x = cell(rng), y = cell(rng), z = cell(rng);
+    ASSERT_EQ(core::hilbert_key(x, y, z), skilling_key(x, y, z, 10)) << x << " " << y << " " << z;
+  }
+  for (std::uint32_t x : {0u, 1u, 511u, 512u, 1022u, 1023u})
+    for (std::uint32_t y : {0u, 1u, 511u, 512u, 1023u})
+      for (std::uint32_t z : {0u, 511u, 512u, 1023u}) EXPECT_EQ(core::hilbert_key(x, y, z), skilling_key(x, y, z, 10));
+}
+
+TEST(TreeOrder, HilbertKeyStepsBetweenFaceNeighbours) {
+  // The curve enters at the origin, so the corner cube of 16^3 cells is its
+  // first 4096 places: each taken once, and each cell along it a face
+  // neighbour of the one before (what makes runs of the order compact).
+  std::vector<std::array<std::uint32_t, 3>> along(4096, {~0u, ~0u, ~0u});
+  for (std::uint32_t x = 0; x < 16; ++x)
+    for (std::uint32_t y = 0; y < 16; ++y)
+      for (std::uint32_t z = 0; z < 16; ++z) {
+        const std::uint32_t key = core::hilbert_key(x, y, z);
+        ASSERT_LT(key, 4096u);
+        ASSERT_EQ(along[key][0], ~0u) << "place " << key << " taken twice";
+        along[key] = {x, y, z};
+      }
+  for (std::size_t k = 1; k < along.size(); ++k) {
+    int distance = 0;
+    for (int a = 0; a < 3; ++a)
+      distance += std::abs(static_cast<int>(along[k][a]) - static_cast<int>(along[k - 1][a]));
+    EXPECT_EQ(distance, 1) << "places " << k - 1 << " and " << k;
+  }
+  // Across the whole grid: the curve runs from one corner cell (place 0) to
+  // another (the last place).
+  std::set<std::uint32_t> seen;
+  for (std::uint32_t c : {0u, 1023u})
+    for (std::uint32_t d : {0u, 1023u})
+      for (std::uint32_t e : {0u, 1023u}) seen.insert(core::hilbert_key(c, d, e));
+  EXPECT_EQ(seen.size(), 8u);
+  EXPECT_TRUE(seen.count(0u) == 1 && seen.count((1u << 30) - 1) == 1) << "the curve runs from corner to corner";
 }
 
 TEST(BoxBesidePlane, NeverClaimsABoxThatTouchesThePlaneAndFindsClearOnes) {
