@@ -55,6 +55,31 @@ void check_widen_narrow(std::mt19937_64& rng, long& checks) {
   }
 }
 
+TEST(IntOracle, ApproxToDoubleOfI128IsWithinThreeRoundings) {
+  // Random values of every bit length, both signs, and the edges of the two
+  // branches (2^63), of exact high limbs (2^117) and of the range (2^127 - 1).
+  std::mt19937_64 rng(23);
+  std::vector<mpz_class> values = boundary_values(127);
+  for (int bits = 1; bits <= 127; ++bits)
+    for (int i = 0; i < 200; ++i) values.push_back(random_value(rng, bits));
+  for (const mpz_class& edge : std::vector<mpz_class>{pow2(63), pow2(64) - 1, pow2(64), pow2(53) + 1, pow2(117) + 1, pow2(127) - 1}) {
+    values.push_back(edge);
+    values.push_back(edge - 1);
+    values.push_back(-edge);
+  }
+  long checked = 0;
+  for (const mpz_class& m : values) {
+    const i128 v = from_mpz<127>(m).raw();  // |m| < 2^127: inside the documented range
+    const double d = approx_to_double(v);
+    const mpq_class err = abs(mpq_class(d) - mpq_class(m));
+    // 3 roundings: (1 + 2^-53)^3 - 1 < 2^-51.
+    ASSERT_LE(err, abs(mpq_class(m)) / mpq_class(mpz_class(1) << 51)) << m;
+    ASSERT_EQ(d < 0, m < 0) << m;
+    ++checked;
+  }
+  EXPECT_GT(checked, 25000);
+}
+
 TEST(IntOracle, Unary) {
   std::mt19937_64 rng(7);
   long n = 0;

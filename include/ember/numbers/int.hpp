@@ -45,6 +45,22 @@ inline double to_double(i128 v) {
   return static_cast<i128>(low) == v ? static_cast<double>(low) : static_cast<double>(v);
 }
 
+/// An approximation within 3 roundings (relative error < 2^-51), without
+/// libgcc's __int128 routine (~50 instructions for values above 2^64), for
+/// cached approximations that feed filters. Beyond 2^63 the magnitude is
+/// split: its high limb (< 2^64) times 2^64, exact unless above 2^53 (one
+/// rounding), plus its low limb halved to fit a signed conversion (one
+/// rounding, and the lost bit is < 2^-63 of the value), summed (one more).
+/// Requires v > -2^127 (the high limb of |v| then fits int64).
+inline double approx_to_double(i128 v) {
+  assert(v != static_cast<i128>(static_cast<u128>(1) << 127));
+  const u128 m = v < 0 ? -static_cast<u128>(v) : static_cast<u128>(v);
+  const double r = (m >> 63) == 0 ? static_cast<double>(static_cast<std::int64_t>(m))
+                                  : static_cast<double>(static_cast<std::int64_t>(m >> 64)) * 0x1p64 +
+                                        static_cast<double>(static_cast<std::int64_t>(static_cast<std::uint64_t>(m) >> 1)) * 2.0;
+  return v < 0 ? -r : r;
+}
+
 template <int Bits>
 class Int;
 
