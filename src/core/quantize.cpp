@@ -1,9 +1,11 @@
 #include "ember/core/quantize.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "ember/error.hpp"
@@ -12,7 +14,66 @@
 namespace ember {
 
 namespace {
+
+using i128 = __int128;
+
 double coord(const Vec3d& p, int i) { return i == 0 ? p.x : (i == 1 ? p.y : p.z); }
+
+/// v, if |v| < 2^120 (then it is an i128 and products with 50-bit factors
+/// still fit).
+template <int B>
+std::optional<i128> narrow(const Int<B>& v) {
+  static_assert(Int<B>::limbs == 3, "Point's coordinates and w have three limbs");
+  const auto hi = static_cast<std::int64_t>(v.limb(1));
+  constexpr std::int64_t kHigh = std::int64_t{1} << 56;
+  if (v.limb(2) != (hi < 0 ? ~std::uint64_t{0} : 0) || hi >= kHigh || hi < -kHigh) return std::nullopt;
+  return static_cast<i128>(static_cast<unsigned __int128>(v.limb(1)) << 64 | v.limb(0));
+}
+
+/// x / w + c rounded to the nearest double, for 0 < w and |x|, w < 2^120 and
+/// |c| < 2^63, where double arithmetic can tell (else nullopt; about one
+/// case in 2^20 on real points, and points near 0 or beyond 2^52 grid units
+/// from it, which ratio_to_double handles). The crossing points of the
+/// direct route are such ratios (|x| < 2^110, w < 2^84): this is 3-4x
+/// cheaper than the three-limb ratio.
+///  1. q = floor(x / w) and r = x - q w in [0, w) exactly: from a double
+///     quotient (error < 2 where |x / w| < 2^50), truncated (std::floor is
+///     a libm call on the baseline target), corrected in i128.
+///  2. The value is N + f with N = q + c (int64) and f = r / w in [0, 1);
+///     for |N| in [1, 2^52) or N <= -2 (|value| >= 1/2), N is exact in
+///     double, and fd = r / w in double errs by less than D = 2^-50 (three
+///     roundings in each conversion, one in the division, times f < 1).
+///  3. s = N + fd rounded, and its error e exactly (Fast2Sum: |N| >= fd).
+///     The value lies within D of s + e; s is its correct rounding when
+///     that interval lies strictly inside s's rounding interval (half the
+///     gap to each neighbouring double; the gap below a power of two is half
+///     the one above), so there are never ties to break.
+std::optional<double> offset_ratio_to_double(i128 x, i128 w, std::int64_t c) {
+  const double dw = approx_to_double(w);
+  const double qd = approx_to_double(x) / dw;
+  if (!(std::fabs(qd) < 0x1p50)) return std::nullopt;
+  auto q = static_cast<std::int64_t>(qd);  // truncated: within 3 of floor(x / w)
+  i128 r = x - static_cast<i128>(q) * w;  // |q w| < |x| + 3 w < 2^122
+  for (int i = 0; i < 3 && r < 0; ++i) r += w, --q;
+  for (int i = 0; i < 3 && r >= w; ++i) r -= w, ++q;
+  if (r < 0 || r >= w) return std::nullopt;  // never, by the bound in 1.
+  const std::int64_t n = q + c;              // |q| < 2^51, |c| < 9.0e18 < 2^63 - 2^51
+  constexpr std::int64_t kExact = std::int64_t{1} << 52;
+  if (n >= kExact || n < -kExact || n == 0 || n == -1) return std::nullopt;
+  const double nd = static_cast<double>(n), fd = approx_to_double(r) / dw;
+  const double sum = nd + fd, err = fd - (sum - nd);
+  constexpr double kFractionError = 0x1p-50;
+  const std::uint64_t bits = std::bit_cast<std::uint64_t>(std::fabs(sum));
+  const std::uint64_t exponent = bits >> 52;  // |sum| >= 1/2: a normal double
+  const double half_gap_away = std::bit_cast<double>((exponent - 53) << 52);
+  const double half_gap_toward =
+      (bits & ((std::uint64_t{1} << 52) - 1)) == 0 ? std::bit_cast<double>((exponent - 54) << 52) : half_gap_away;
+  const double away = sum > 0 ? err : -err;  // the offset from sum, away from 0
+  // Both bounds are exact: powers of two 2^-55 .. 2^0 minus 2^-50.
+  if (away < half_gap_away - kFractionError && away > kFractionError - half_gap_toward) return sum;
+  return std::nullopt;
+}
+
 }  // namespace
 
 Quantizer Quantizer::fit(std::span<const Vec3d> points) {
@@ -91,6 +152,12 @@ Vec3d Quantizer::dequantize(const Point& p) const {
   if (p.w == PointW(1))
     return dequantize(IntPoint{static_cast<std::int64_t>(p.x.limb(0)), static_cast<std::int64_t>(p.y.limb(0)),
                                static_cast<std::int64_t>(p.z.limb(0))});
+  const std::optional<i128> w = narrow(p.w), px = narrow(p.x), py = narrow(p.y), pz = narrow(p.z);
+  if (w && px && py && pz) {
+    const std::optional<double> x = offset_ratio_to_double(*px, *w, c_[0]), y = offset_ratio_to_double(*py, *w, c_[1]),
+                                z = offset_ratio_to_double(*pz, *w, c_[2]);
+    if (x && y && z) return Vec3d{*x * inv_scale_, *y * inv_scale_, *z * inv_scale_};
+  }
   // x = (X + C W) / W * 2^-k: |C| < 9.0e18 < 2^63 (fit_box), W < 2^162 so
   // C W < 2^225, sum < 2^226. Int<63>: one limb, the products' fast path.
   const Int<63> cx(c_[0]), cy(c_[1]), cz(c_[2]);

@@ -6,8 +6,11 @@
 #include <cmath>
 #include <random>
 
+#include "core/direct_faces.hpp"
 #include "ember/core/quantize.hpp"
 #include "ember/error.hpp"
+#include "support/correct_rounding.hpp"
+#include "support/int_gmp.hpp"
 
 namespace ember::test {
 namespace {
@@ -128,6 +131,113 @@ TEST(Quantize, ExportOfRationalPointsIsCorrectlyRounded) {
     }
   }
   EXPECT_GT(checked, 6000);
+}
+
+/// The exact value of coordinate a of p in caller units: (X + C W) / W * 2^-k.
+mpq_class exact_coordinate(const Quantizer& q, const Point& p, int a) {
+  const PointXYZ& x = a == 0 ? p.x : (a == 1 ? p.y : p.z);
+  const mpz_class w = to_mpz(p.w);
+  mpq_class value(to_mpz(x) + mpz_class(static_cast<long>(q.centre_grid()[a])) * w, w);
+  value.canonicalize();
+  if (q.exponent() >= 0) {
+    value /= mpq_class(pow2(q.exponent()));
+  } else {
+    value *= mpq_class(pow2(-q.exponent()));
+  }
+  return value;
+}
+
+::testing::AssertionResult exports_correctly(const Quantizer& q, const Point& p) {
+  const Vec3d out = q.dequantize(p);
+  const double got[3] = {out.x, out.y, out.z};
+  for (int a = 0; a < 3; ++a)
+    if (auto r = rounds_correctly(exact_coordinate(q, p, a), got[a]); !r) return r << " on axis " << a;
+  return ::testing::AssertionSuccess();
+}
+
+/// A point with these i128 coordinates over w > 0.
+Point small_point(__int128 x, __int128 y, __int128 z, __int128 w) {
+  Point p{PointXYZ(x), PointXYZ(y), PointXYZ(z), PointW(w), {}};
+  detail::cache_approx(p);
+  return p;
+}
+
+/// Quantizers with the centre at 0, near 2^45 grid units and beyond 2^52 of
+/// them (where dequantize must leave the double evaluation).
+std::vector<Quantizer> quantizers() {
+  return {Quantizer::fit_box({-3.25, 10, 0.5}, {7.75, 11, 100}), Quantizer::fit_box({-1, -1, -1}, {1, 1, 1}),
+          Quantizer::fit_box({1e6, -2e6, 3e6}, {1e6 + 0.5, -2e6 + 0.25, 3e6 + 1}),
+          Quantizer::fit_box({1e10, 1e10, -1e10}, {1e10 + 1, 1e10 + 1, -1e10 + 1})};
+}
+
+TEST(Quantize, ExportOfCrossingPointsIsCorrectlyRounded) {
+  // The direct route's points (a (-sb) + b sa) / (sa - sb): i128 coordinates,
+  // which dequantize rounds in double where that decides.
+  std::mt19937_64 rng(31);
+  std::uniform_int_distribution<std::int64_t> coord(-(std::int64_t{1} << 25), std::int64_t{1} << 25);
+  long checked = 0;
+  for (const Quantizer& q : quantizers())
+    for (int i = 0; i < 3000; ++i) {
+      const IntPoint a{coord(rng), coord(rng), coord(rng)}, b{coord(rng), coord(rng), coord(rng)};
+      const int bits = 1 + static_cast<int>(rng() % 82);
+      const auto side = [&] {
+        const __int128 v = (static_cast<__int128>(rng()) << 64 | rng()) & ((static_cast<__int128>(1) << bits) - 1);
+        return v == 0 ? __int128{1} : v;
+      };
+      const __int128 sa = side(), sb = -side();
+      ASSERT_TRUE(exports_correctly(q, core::crossing_point(a, b, (i % 2) ? sa : sb, (i % 2) ? sb : sa)));
+      ++checked;
+    }
+  EXPECT_EQ(checked, 12000);
+}
+
+TEST(Quantize, ExportNearAndAtRoundingMidpointsIsCorrectlyRounded) {
+  // Coordinates X / W + C within a few 1/W of a midpoint between two
+  // doubles, and exactly on one (ties to even), at grid values of every
+  // size from near 0 to 2^25 and near powers of two.
+  std::mt19937_64 rng(37);
+  long checked = 0;
+  for (const Quantizer& q : quantizers()) {
+    const std::int64_t c = q.centre_grid()[0];
+    for (int i = 0; i < 4000; ++i) {
+      // A grid value g (relative to the centre), then the double s nearest
+      // to C + g and the midpoint above or below it.
+      const int magnitude = static_cast<int>(rng() % 27) - 1;  // |g| ~ 2^-1 .. 2^25
+      double g = std::ldexp(static_cast<double>(rng() % 1000000) / 1000000.0 + 1.0, magnitude);
+      if (i % 7 == 0) g = std::ldexp(1.0, magnitude);  // a power of two: the gap below is half
+      if (rng() & 1) g = -g;
+      const double s = static_cast<double>(static_cast<long double>(c) + g);
+      const double neighbour = std::nextafter(s, (rng() & 1) ? INFINITY : -INFINITY);
+      const mpq_class mid = (mpq_class(s) + mpq_class(neighbour)) / 2 - mpq_class(mpz_class(static_cast<long>(c)));
+      // mid = p / 2^t: W = 2^t K with K random, X = p K + delta.
+      const mpz_class den = mid.get_den(), num = mid.get_num();
+      if (den > pow2(40)) continue;  // values whose gap is below 2^-40 of a grid unit
+      const mpz_class k = from_u64(rng() >> 24) + 1;  // below 2^40
+      const int delta = static_cast<int>(rng() % 5) - 2;
+      const mpz_class w = den * k, x = num * k + delta;
+      const Point p = small_point(from_mpz<127>(x).raw(), from_mpz<127>(x + 1).raw(), from_mpz<127>(-x).raw(),
+                                  from_mpz<127>(w).raw());
+      ASSERT_TRUE(exports_correctly(q, p)) << "g " << g << " delta " << delta;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 12000);
+  // Just below the tie under a power of two 2^m, where the gap to the double
+  // below is half the gap above, with the fraction's double exactly on the
+  // tie (w = 2^60 + 1 rounds down to 2^60): only the half gap below tells
+  // that 2^m is not the nearest.
+  const Quantizer centred = Quantizer::fit_box({-1, -1, -1}, {1, 1, 1});
+  ASSERT_EQ(centred.centre_grid()[0], 0);
+  for (int m = 2; m <= 25; ++m) {
+    const mpz_class w = pow2(60) + 1, n = pow2(m) - 1;
+    const mpz_class r = (pow2(60) - pow2(m + 6)) * w / pow2(60);  // floor((1 - 2^(m-54)) w)
+    for (const int sign : {1, -1}) {
+      const mpz_class x = sign * (n * w + r);
+      const Point p = small_point(from_mpz<127>(x).raw(), from_mpz<127>(x).raw(), from_mpz<127>(x).raw(),
+                                  from_mpz<127>(w).raw());
+      EXPECT_TRUE(exports_correctly(centred, p)) << "m " << m << " sign " << sign;
+    }
+  }
 }
 
 }  // namespace

@@ -3,10 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 
 #include "ember/numbers/ratio.hpp"
 #include "numbers/oracle.hpp"
+#include "support/correct_rounding.hpp"
 
 namespace ember::test {
 namespace {
@@ -15,22 +15,7 @@ namespace {
 ::testing::AssertionResult correctly_rounded(const mpz_class& num, const mpz_class& den, double d) {
   mpq_class q(num, den);
   q.canonicalize();  // mpq_class(num, den) keeps a negative or non-reduced denominator as given
-  auto fail = [&](const char* why) {
-    return ::testing::AssertionFailure() << why << ": " << num << " / " << den << " gave " << std::hexfloat << d;
-  };
-  if (!std::isfinite(d)) return fail("not finite");
-  if (num == 0) return d == 0.0 && !std::signbit(d) ? ::testing::AssertionSuccess() : fail("zero must give +0");
-  if ((d < 0) != (q < 0) || d == 0) return fail("wrong sign");
-  const mpq_class here(d);
-  const mpq_class below(std::nextafter(d, 0.0)), above(std::nextafter(d, d * 2));
-  const mpq_class err = abs(q - here), err_below = abs(q - below), err_above = abs(q - above);
-  if (err > err_below || err > err_above) return fail("not nearest");
-  if (err == err_below || err == err_above) {
-    std::uint64_t bits;
-    std::memcpy(&bits, &d, sizeof bits);
-    if (bits & 1) return fail("tie not rounded to even");
-  }
-  return ::testing::AssertionSuccess();
+  return rounds_correctly(q, d) << " (" << num << " / " << den << ")";
 }
 
 template <int A, int B>
