@@ -52,16 +52,41 @@ bool pair_chord(const GridTriangles& grid, const EdgeNames& names, std::uint32_t
     sf[i] = grid_side(c[0], n, d[i]);
     if (st[i] == 0 || sf[i] == 0) return false;  // a corner on the other's plane
   }
+  // Each triangle's lone corner on its side of the other's plane; none when
+  // one lies wholly beside the other's plane (they do not meet; the partner
+  // search passes no such pair).
+  const auto lone_corner = [](const i128* v) {
+    constexpr int kLone[8] = {-1, 0, 1, 2, 2, 1, 0, -1};  // by the corners' side bits
+    return kLone[(v[0] > 0) | (v[1] > 0) << 1 | (v[2] > 0) << 2];
+  };
+  const int lone_x = lone_corner(st), lone_y = lone_corner(sf);
+  if (lone_x < 0 || lone_y < 0) return false;
   int found = 0;
   bool leaves_along_d[2];
-  // An edge p -> q of one triangle that crosses the other's plane crosses
-  // the other triangle's interior iff it turns the same way around all of
-  // its edges (orient3d); a zero means it meets an edge's line there.
-  const auto crossing = [&](const IntPoint& p, const IntPoint& q, const std::array<IntPoint, 3>& other, int& inside) {
-    const int o0 = sign_of(grid_orient3d(p, q, other[0], other[1])), o1 = sign_of(grid_orient3d(p, q, other[1], other[2])),
-              o2 = sign_of(grid_orient3d(p, q, other[2], other[0]));
-    if (o0 == 0 || o1 == 0 || o2 == 0) return false;
-    inside = o0 == o1 && o1 == o2;
+  // An edge p -> q of one triangle that crosses the other's plane meets the
+  // line L of both planes at a point P; the other triangle meets L in the
+  // stretch between its two edges that cross this plane, r -> s and t -> r
+  // from its lone corner r. P lies inside the other triangle iff p -> q turns
+  // the same way around those two edges (orient3d); P is on L, which never
+  // reaches the wedge opposite r's, so the third edge's test adds nothing
+  // (it cost a third of the orientations). A zero means P is on one of the
+  // two edges: not general position.
+  //   orient3d(p, q, r, s) = m . (s - p) and orient3d(p, q, t, r) =
+  //   -m . (t - p) with m = (q - p) x (r - p): one cross product for both
+  //   (differences < 2^26: m < 2^53 in int64, each dot product < 2^81).
+  const auto crossing = [&](const IntPoint& p, const IntPoint& q, const std::array<IntPoint, 3>& other, int lone,
+                            int& inside) {
+    const IntPoint &r = other[static_cast<std::size_t>(lone)], &sv = other[static_cast<std::size_t>((lone + 1) % 3)],
+                   &t = other[static_cast<std::size_t>((lone + 2) % 3)];
+    const std::int64_t ux = q.x - p.x, uy = q.y - p.y, uz = q.z - p.z;
+    const std::int64_t vx = r.x - p.x, vy = r.y - p.y, vz = r.z - p.z;
+    const std::int64_t mx = uy * vz - uz * vy, my = uz * vx - ux * vz, mz = ux * vy - uy * vx;
+    const auto dot = [&](const IntPoint& e) {
+      return i128{mx} * (e.x - p.x) + i128{my} * (e.y - p.y) + i128{mz} * (e.z - p.z);
+    };
+    const int o_rs = sign_of(dot(sv)), o_tr = -sign_of(dot(t));
+    if (o_rs == 0 || o_tr == 0) return false;
+    inside = o_rs == o_tr;
     return true;
   };
   // The end points on x's edges (crossing y), then on y's (crossing x).
@@ -74,7 +99,7 @@ bool pair_chord(const GridTriangles& grid, const EdgeNames& names, std::uint32_t
       const int j = i == 2 ? 0 : i + 1;
       if ((s[i] > 0) == (s[j] > 0)) continue;
       int inside = 0;
-      if (!crossing(e[i], e[j], on_x ? d : c, inside)) return false;
+      if (!crossing(e[i], e[j], on_x ? d : c, on_x ? lone_y : lone_x, inside)) return false;
       if (!inside) continue;
       if (found == 2) return false;
       ChordEnd& end = out.end[static_cast<std::size_t>(found)];

@@ -1,6 +1,7 @@
 // The direct route's exact arithmetic (src/core/direct_faces.hpp) against
-// GMP: crossing points of a grid segment with a triangle's plane, and their
-// order along the segment, at the full coordinate range.
+// GMP: crossing points of a grid segment with a triangle's plane, their
+// order along the segment, and the chord of two meeting triangles, at the
+// full coordinate range and on a tiny grid full of degenerate contacts.
 #include <gtest/gtest.h>
 #include <gmpxx.h>
 
@@ -104,6 +105,106 @@ TEST(DirectFaces, CrossingOrderMatchesTheRationalParameters) {
     ties += lx == ly;
   }
   EXPECT_GE(ties, 1000);
+}
+
+/// The rational oracle's view of two triangles x (operand 0) and y
+/// (operand 1): what pair_chord must answer.
+struct OracleChord {
+  bool general = false;  ///< in general position, crossing along one chord
+  std::array<core::CrossingName, 2> ends{};  ///< start, then end along n_x x n_y
+};
+
+using Vec = std::array<mpq_class, 3>;
+Vec vec(const IntPoint& p) { return {mpq_class(static_cast<long>(p.x)), mpq_class(static_cast<long>(p.y)), mpq_class(static_cast<long>(p.z))}; }
+Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec cross(const Vec& a, const Vec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+mpq_class dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/// Rational: the points where one triangle's edges cross the other's plane
+/// strictly, kept if strictly inside the other; any such point on the
+/// other's boundary, or a corner on the other's plane, is not general position.
+OracleChord oracle_chord(const std::array<IntPoint, 3>& x, const std::array<IntPoint, 3>& y, const core::EdgeNames& names) {
+  const std::array<const std::array<IntPoint, 3>*, 2> tri{&x, &y};
+  std::array<Vec, 2> normal;
+  for (int k = 0; k < 2; ++k) {
+    const auto& t = *tri[static_cast<std::size_t>(k)];
+    normal[static_cast<std::size_t>(k)] = cross(sub(vec(t[1]), vec(t[0])), sub(vec(t[2]), vec(t[0])));
+  }
+  OracleChord out;
+  std::vector<std::pair<core::CrossingName, Vec>> inside;
+  for (int k = 0; k < 2; ++k) {
+    const auto &t = *tri[static_cast<std::size_t>(k)], &o = *tri[static_cast<std::size_t>(1 - k)];
+    const Vec& no = normal[static_cast<std::size_t>(1 - k)];
+    mpq_class side[3];
+    for (int i = 0; i < 3; ++i) {
+      side[i] = dot(no, sub(vec(t[static_cast<std::size_t>(i)]), vec(o[0])));
+      if (side[i] == 0) return out;  // a corner on the other's plane
+    }
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3;
+      if ((side[i] > 0) == (side[j] > 0)) continue;
+      const Vec a = vec(t[static_cast<std::size_t>(i)]), b = vec(t[static_cast<std::size_t>(j)]);
+      const mpq_class lambda = side[i] / (side[i] - side[j]);
+      const Vec p{a[0] + (b[0] - a[0]) * lambda, a[1] + (b[1] - a[1]) * lambda, a[2] + (b[2] - a[2]) * lambda};
+      int positive = 0, zero = 0;
+      for (int e = 0; e < 3; ++e) {
+        const Vec u = vec(o[static_cast<std::size_t>(e)]), v = vec(o[static_cast<std::size_t>((e + 1) % 3)]);
+        const int s = sgn(dot(cross(sub(v, u), sub(p, u)), no));
+        positive += s > 0;
+        zero += s == 0;
+      }
+      if (positive + zero == 3 && zero > 0) return out;  // on the other's boundary
+      if (positive == 3) inside.push_back({{names.edge_key(static_cast<std::uint32_t>(k), i), static_cast<std::uint32_t>(1 - k)}, p});
+    }
+  }
+  if (inside.size() != 2) return out;
+  const Vec d = cross(normal[0], normal[1]);
+  if (dot(sub(inside[1].second, inside[0].second), d) < 0) std::swap(inside[0], inside[1]);
+  out.general = true;
+  out.ends = {inside[0].first, inside[1].first};
+  return out;
+}
+
+TEST(DirectFaces, PairChordMatchesTheRationalIntersection) {
+  // Triangles x (id 0, operand 0) and y (id 1, operand 1) with their own
+  // vertex ids; on a 7^3 grid most meeting pairs touch degenerately
+  // (corners on planes, crossings on edges, the line through a third edge).
+  core::GridTriangles grid;
+  grid.corners.resize(2);
+  const std::vector<std::array<std::uint32_t, 3>> ids{{0, 1, 2}, {0, 1, 2}};
+  core::InputTopology topo;
+  topo.by_triangle = ids;
+  topo.operand_base = {0, 3, 6};
+  const std::vector<std::uint32_t> operand_of{0, 1};
+  const core::EdgeNames names{topo, operand_of};
+  Points g(29);
+  int general = 0, degenerate = 0;
+  for (int i = 0; i < 40000; ++i) {
+    const bool tiny = i % 2 == 0;
+    const auto triangle = [&] {
+      for (;;) {
+        const std::array<IntPoint, 3> t =
+            tiny ? std::array<IntPoint, 3>{g.small_point(3), g.small_point(3), g.small_point(3)} : random_triangle(g);
+        if (grid_normal(t[0], t[1], t[2]) != std::array<std::int64_t, 3>{0, 0, 0}) return t;
+      }
+    };
+    grid.corners[0] = triangle();
+    grid.corners[1] = triangle();
+    const OracleChord want = oracle_chord(grid.corners[0], grid.corners[1], names);
+    core::PairChord got;
+    ASSERT_EQ(core::pair_chord(grid, names, 0, 1, got), want.general) << "pair " << i;
+    if (!want.general) {
+      ++degenerate;
+      continue;
+    }
+    ++general;
+    ASSERT_EQ(got.end[0].name, want.ends[0]) << "pair " << i;
+    ASSERT_EQ(got.end[1].name, want.ends[1]) << "pair " << i;
+  }
+  EXPECT_GT(general, 2000);
+  EXPECT_GT(degenerate, 2000);
 }
 
 }  // namespace
