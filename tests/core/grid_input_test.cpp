@@ -2,13 +2,16 @@
 // rounding_change decides most triangles in double and must always give the
 // long double definition's answer (rounding_change_reference), including
 // near its area threshold, near n . g = 0, and at extreme scales where the
-// double filter has to step aside.
+// double filter has to step aside. And the weld of the grid vertices: ids
+// are the ranks of the distinct grid positions in (x, y, z) order.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <random>
+#include <tuple>
 
 #include "core/grid_input.hpp"
 
@@ -111,6 +114,52 @@ TEST(RoundingChange, ExtremeScalesFallBackToTheDefinition) {
     check(a, Vec3d{s, 0, 0}, Vec3d{0, 0x1p-200, 0}, up, t);  // edges of very different lengths
   }
   EXPECT_EQ(t.failed, 0);
+}
+
+TEST(GridWeld, IdsAreTheRanksOfTheDistinctPositions) {
+  // Operand 0: few distinct x (runs of equal x longer than the parallel
+  // run sort's threshold), repeated positions under different indices, and
+  // unused vertices; operand 1: spread out, runs of one.
+  std::mt19937_64 rng(41);
+  std::vector<Mesh> operands(2);
+  for (int o = 0; o < 2; ++o) {
+    Mesh& m = operands[static_cast<std::size_t>(o)];
+    const int n = o == 0 ? 30000 : 8000;
+    for (int i = 0; i < n; ++i) {
+      if (o == 0 && i > 0 && rng() % 4 == 0) {  // a repeat of an earlier position
+        m.add_vertex(m.vertices[rng() % m.vertices.size()]);
+        continue;
+      }
+      const auto at = [&](int range) { return static_cast<double>(static_cast<int>(rng() % static_cast<unsigned>(range))); };
+      m.add_vertex(o == 0 ? Vec3d{at(3), at(60), at(40)} : Vec3d{at(1000000), at(1000000), at(1000000)});
+    }
+    for (int f = 0; f < n; ++f) {  // some vertices stay unused
+      const std::array<std::uint32_t, 3> face{static_cast<std::uint32_t>(rng() % static_cast<unsigned>(n - 50)),
+                                              static_cast<std::uint32_t>(rng() % static_cast<unsigned>(n - 50)),
+                                              static_cast<std::uint32_t>(rng() % static_cast<unsigned>(n - 50))};
+      m.add_face(face);
+    }
+  }
+  const UsedVertices used = used_vertices(operands);
+  const Quantizer q = fit_used_vertices(operands, used);
+  const GridInput gi = to_grid(operands, q, used);
+  for (std::size_t o = 0; o < 2; ++o) {
+    // The oracle: every used position's rank among the distinct ones.
+    std::map<std::tuple<std::int64_t, std::int64_t, std::int64_t>, std::uint32_t> rank;
+    for (const std::uint32_t v : used[o]) {
+      const IntPoint p = q.quantize(operands[o].vertices[v]);
+      rank[{p.x, p.y, p.z}] = 0;
+    }
+    std::uint32_t next = 0;
+    for (auto& [position, r] : rank) r = next++;
+    ASSERT_EQ(gi.vertex_count[o], rank.size()) << "operand " << o;
+    if (o == 0) EXPECT_LT(rank.size(), used[o].size()) << "operand 0 repeats positions";
+    for (std::size_t t = gi.operand_begin[o]; t < gi.operand_begin[o + 1]; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const IntPoint p = q.quantize(operands[o].vertices[gi.triangles[t].v[static_cast<std::size_t>(k)]]);
+        ASSERT_EQ(gi.vertex_ids[t][static_cast<std::size_t>(k)], rank.at({p.x, p.y, p.z})) << "triangle " << t;
+      }
+  }
 }
 
 }  // namespace
