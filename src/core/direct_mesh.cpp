@@ -2,10 +2,10 @@
 #include "core/direct_mesh.hpp"
 
 #include "core/direct_faces.hpp"
+#include "core/sort_pairs.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <chrono>
@@ -102,16 +102,27 @@ std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box
   const std::uint32_t inputs = topology.operand_base.back();
   std::vector<std::size_t> name_at(blocks.size() + 1, 0);
   for (std::size_t b = 0; b < blocks.size(); ++b) name_at[b + 1] = name_at[b] + blocks[b].names.size();
-  std::vector<std::pair<CrossingName, std::uint32_t>> named(name_at.back());  // (name, global occurrence)
+  // The occurrences in (name, occurrence) order: by the name's edge in a
+  // radix sort, then each run of one edge by (face, occurrence) (a
+  // comparison sort of the names was 1.2% of the bunny pair's instructions).
+  std::vector<CrossingName> name_of(name_at.back());
+  FillVector<std::pair<std::uint64_t, std::uint32_t>> named(name_at.back());  // (edge, global occurrence)
   tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
-    for (std::size_t i = 0; i < blocks[b].names.size(); ++i)
-      named[name_at[b] + i] = {blocks[b].names[i], static_cast<std::uint32_t>(name_at[b] + i)};
+    for (std::size_t i = 0; i < blocks[b].names.size(); ++i) {
+      name_of[name_at[b] + i] = blocks[b].names[i];
+      named[name_at[b] + i] = {blocks[b].names[i].edge, static_cast<std::uint32_t>(name_at[b] + i)};
+    }
   });
-  tbb::parallel_sort(named.begin(), named.end());
+  sort_pairs(named);
+  sort_equal_key_runs(named, [&](const std::pair<std::uint64_t, std::uint32_t>& a,
+                                 const std::pair<std::uint64_t, std::uint32_t>& b) {
+    const std::uint32_t fa = name_of[a.second].face, fb = name_of[b.second].face;
+    return fa != fb ? fa < fb : a.second < b.second;
+  });
   std::vector<std::uint32_t> id_of(named.size());
   std::vector<std::uint32_t> first_of;  // per crossing vertex: its first occurrence
   for (std::size_t i = 0; i < named.size(); ++i) {
-    if (i == 0 || named[i].first != named[i - 1].first) first_of.push_back(named[i].second);
+    if (i == 0 || name_of[named[i].second] != name_of[named[i - 1].second]) first_of.push_back(named[i].second);
     id_of[named[i].second] = inputs + static_cast<std::uint32_t>(first_of.size() - 1);
   }
   std::vector<const Point*> point_of(named.size());

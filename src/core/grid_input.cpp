@@ -3,7 +3,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 #include <tbb/parallel_scan.h>
 #include <tbb/parallel_reduce.h>
 
@@ -199,9 +198,9 @@ GridVertices quantize_used(const Mesh& m, const Quantizer& q, std::span<const st
 /// one id; ids follow the positions sorted by (x, y, z), ties by index.
 /// Returns the id count. The order: a stable radix sort by x (sort_pairs;
 /// the used vertices come in index order), then each run of equal x sorted
-/// by (y, z, index) on its own. Runs are mostly single vertices, so this is
-/// three radix passes where a second sort by (y, z) took five more (a
-/// comparison sort of the tuples was ~2% of a large Boolean's time).
+/// by (y, z, index) (sort_equal_key_runs). Runs are mostly single vertices,
+/// so this is three radix passes where a second sort by (y, z) took five
+/// more (a comparison sort of the tuples was ~2% of a large Boolean's time).
 std::size_t weld_grid_vertices(const GridVertices& g, std::vector<std::uint32_t>& id) {
   // |coordinate| <= kLimit < 2^25: offset by 2^25, each fits 27 bits.
   static_assert(Quantizer::kLimit < (std::int64_t{1} << 25), "grid coordinates + 2^25 fit 27 bits");
@@ -212,28 +211,10 @@ std::size_t weld_grid_vertices(const GridVertices& g, std::vector<std::uint32_t>
     for (std::size_t i = r.begin(); i != r.end(); ++i) by_x[i] = {offset(g.pos[g.used[i]].x), g.used[i]};
   });
   sort_pairs(by_x);  // by (x, index): used is increasing
-  // Each run of equal x is sorted by the block its first vertex falls in
-  // (a run may reach past its block). The order is total (ties by index),
-  // so any sort gives the one result: in parallel for long runs (a mesh
-  // with most vertices on a few planes x = c).
-  const auto before = [&](const std::pair<std::uint32_t, std::uint32_t>& a,
-                          const std::pair<std::uint32_t, std::uint32_t>& b) {
+  sort_equal_key_runs(by_x, [&](const std::pair<std::uint32_t, std::uint32_t>& a,
+                                const std::pair<std::uint32_t, std::uint32_t>& b) {
     const IntPoint &p = g.pos[a.second], &q = g.pos[b.second];
     return p.y != q.y ? p.y < q.y : (p.z != q.z ? p.z < q.z : a.second < b.second);
-  };
-  constexpr std::size_t kLongRun = 4096;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      if (i > 0 && by_x[i - 1].first == by_x[i].first) continue;  // not a run's first vertex
-      std::size_t end = i + 1;
-      while (end < n && by_x[end].first == by_x[i].first) ++end;
-      const auto first = by_x.begin() + static_cast<std::ptrdiff_t>(i), last = by_x.begin() + static_cast<std::ptrdiff_t>(end);
-      if (end - i >= kLongRun) {
-        tbb::parallel_sort(first, last, before);
-      } else if (end - i > 1) {
-        std::sort(first, last, before);
-      }
-    }
   });
   // A new id wherever the position changes along that order: a parallel
   // prefix sum (the serial numbering loop was 12-15 ms of each operand's

@@ -6,6 +6,11 @@
 // compare-and-move steps per element on 10^5 elements (6-9% of a typical
 // Boolean's instructions went into them); a stable LSD radix sort on the
 // bits in which the keys differ takes 3-6 passes of a few instructions each.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -23,5 +28,32 @@ namespace ember::core {
 /// For std::vector and FillVector (fill_vector.hpp), keys of 32 or 64 bits.
 template <typename Key, typename Alloc>
 void sort_pairs(std::vector<std::pair<Key, std::uint32_t>, Alloc>& v);
+
+/// After sort_pairs by a leading part of an order: sorts each run of equal
+/// keys in v by `before`, a strict total order on its pairs (ties broken by
+/// the value), which completes the order. Runs are mostly short when the key
+/// is most of it (the grid weld's x of (x, y, z); the crossing names' edge of
+/// (edge, face)): one radix sort by the key and these small sorts cost far
+/// less than radix passes over the whole order. Each run is sorted by the
+/// block its first pair falls in (it may reach past the block), long runs
+/// in parallel; the order being total, the result is unique.
+template <typename Pairs, typename Before>
+void sort_equal_key_runs(Pairs& v, Before before) {
+  constexpr std::size_t kLongRun = 4096;
+  const std::size_t n = v.size();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      if (i > 0 && v[i - 1].first == v[i].first) continue;  // not a run's first pair
+      std::size_t end = i + 1;
+      while (end < n && v[end].first == v[i].first) ++end;
+      const auto first = v.begin() + static_cast<std::ptrdiff_t>(i), last = v.begin() + static_cast<std::ptrdiff_t>(end);
+      if (end - i >= kLongRun) {
+        tbb::parallel_sort(first, last, before);
+      } else if (end - i > 1) {
+        std::sort(first, last, before);
+      }
+    }
+  });
+}
 
 }  // namespace ember::core

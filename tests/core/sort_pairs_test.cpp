@@ -2,6 +2,7 @@
 // input: the radix fast path (values non-decreasing) and the fallback alike,
 // at any thread count, across chunk boundaries and for keys whose varying
 // bits are sparse (the radix windows skip the bits no key differs in).
+// sort_equal_key_runs completes a key order to a total one, run by run.
 #include <gtest/gtest.h>
 
 #include <tbb/task_arena.h>
@@ -110,6 +111,43 @@ TEST(SortPairs, AllKeysEqualLeavesValueOrder) {
   auto sorted = v;
   core::sort_pairs(sorted);
   EXPECT_TRUE(sorted == v);
+}
+
+TEST(SortEqualKeyRuns, CompletesTheKeyOrderLikeOneFullSort) {
+  // Keys with runs of every length (single pairs, short runs, and runs past
+  // the parallel threshold of 4,096), a secondary value per index, ties by
+  // index: the result must be std::sort's by (key, secondary, index), at 1
+  // and 4 threads.
+  std::mt19937_64 rng(43);
+  Pairs<std::uint64_t> v;
+  std::vector<std::uint32_t> secondary;
+  const std::size_t run_lengths[] = {1, 1, 2, 3, 7, 1, 5000, 1, 40, 9000, 2, 1};
+  for (int round = 0; round < 20; ++round)
+    for (const std::size_t length : run_lengths) {
+      const std::uint64_t key = rng() >> 20;
+      for (std::size_t i = 0; i < length; ++i) {
+        v.push_back({key, static_cast<std::uint32_t>(v.size())});
+        secondary.push_back(static_cast<std::uint32_t>(rng() % 50));
+      }
+    }
+  core::sort_pairs(v);
+  const auto full = [&](const std::pair<std::uint64_t, std::uint32_t>& a, const std::pair<std::uint64_t, std::uint32_t>& b) {
+    if (a.first != b.first) return a.first < b.first;
+    const std::uint32_t sa = secondary[a.second], sb = secondary[b.second];
+    return sa != sb ? sa < sb : a.second < b.second;
+  };
+  Pairs<std::uint64_t> expected = v;
+  std::sort(expected.begin(), expected.end(), full);
+  for (const int threads : {1, 4}) {
+    Pairs<std::uint64_t> got = v;
+    tbb::task_arena(threads).execute([&] {
+      core::sort_equal_key_runs(got, [&](const auto& a, const auto& b) {
+        const std::uint32_t sa = secondary[a.second], sb = secondary[b.second];
+        return sa != sb ? sa < sb : a.second < b.second;
+      });
+    });
+    EXPECT_TRUE(got == expected) << "threads = " << threads;
+  }
 }
 
 }  // namespace
