@@ -135,9 +135,19 @@ bool TriangleCutter::merge_equal_names() {
   const std::size_t n = cross_.size();
   order_.resize(n);
   for (std::uint32_t k = 0; k < n; ++k) order_[k] = k;
-  std::sort(order_.begin(), order_.end(), [&](std::uint32_t a, std::uint32_t b) {
+  const auto name_before = [&](std::uint32_t a, std::uint32_t b) {
     return cross_[a].name != cross_[b].name ? cross_[a].name < cross_[b].name : a < b;
-  });
+  };
+  if (n > 16) {
+    std::sort(order_.begin(), order_.end(), name_before);
+  } else {  // most triangles have a few crossings: std::sort's set-up was most of the work
+    for (std::size_t i = 1; i < n; ++i) {
+      const std::uint32_t k = order_[i];
+      std::size_t at = i;
+      for (; at > 0 && name_before(k, order_[at - 1]); --at) order_[at] = order_[at - 1];
+      order_[at] = k;
+    }
+  }
   merged_.clear();
   merged_at_.resize(n);
   for (const std::uint32_t k : order_) {
@@ -212,16 +222,14 @@ bool TriangleCutter::walk_faces(std::uint32_t id, const std::array<IntPoint, 3>&
       s = slot_[x];
     } while (s != start);
   }
-  local_.exact.resize(kCorners + m);
-  for (std::uint32_t k = 0; k < kCorners; ++k) local_.exact[k] = to_point(c[k]);
-  for (std::size_t i = 0; i < m; ++i) local_.exact[kCorners + i] = cross_[i].point;
+  for (std::uint32_t k = 0; k < kCorners; ++k) local_.exact[k] = to_point(c[k]);  // the crossings follow (cut)
   const Plane support = *supporting_plane(c[0], c[1], c[2]);
   if (!add_closed_curves(support)) return false;
   const std::uint32_t name_base = static_cast<std::uint32_t>(out.names.size());
   if (!emit_faces(id, support, name_base, out)) return false;
-  for (const Crossing& x : cross_) {
-    out.names.push_back(x.name);
-    out.points.push_back(x.point);
+  for (std::size_t i = 0; i < m; ++i) {
+    out.names.push_back(cross_[i].name);
+    out.points.push_back(local_.exact[kCorners + i]);
   }
   return true;
 }

@@ -112,9 +112,13 @@ class TriangleCutter {
     cross_.clear();
     for (const ChordRef& r : chords) add_chord(r);
     if (!merge_equal_names()) return false;
-    for (Crossing& x : cross_) {  // each point once per triangle, after the merge
+    // Each point once per triangle, after the merge, in place among the
+    // local vertices (0-2: the corners, set by walk_faces).
+    local_.exact.resize(kCorners + cross_.size());
+    for (std::size_t i = 0; i < cross_.size(); ++i) {
+      const Crossing& x = cross_[i];
       const std::array<IntPoint, 3>& e = grid_.corners[x.tri];
-      x.point = crossing_point(e[x.tri_edge], e[x.tri_edge == 2 ? 0 : x.tri_edge + 1], x.sa, x.sb);
+      local_.exact[kCorners + i] = crossing_point(e[x.tri_edge], e[x.tri_edge == 2 ? 0 : x.tri_edge + 1], x.sa, x.sb);
     }
     for (const Crossing& x : cross_)
       if (x.edge >= 0 ? (x.next < 0) == (x.prev < 0) : (x.next < 0 || x.prev < 0)) return false;
@@ -125,7 +129,6 @@ class TriangleCutter {
   /// A crossing point of one touched triangle, local to it.
   struct Crossing {
     CrossingName name;
-    Point point;
     int edge = -1;     ///< the triangle's own edge it lies on, or -1 inside the triangle
     std::uint32_t tri = 0;     ///< the triangle whose edge it lies on (this one or the partner)
     std::uint8_t tri_edge = 0;  ///< that edge
