@@ -280,5 +280,42 @@ TEST(MeshStage, LongLoopsClipTheSameEarsThroughTheGrid) {
   EXPECT_GT(triangles, 2000u);
 }
 
+TEST(MeshStage, ShortLoopsClipTheSameEarsWithTheScanQueue) {
+  // Loops of up to 16 vertices take their ears from a scan instead of a
+  // heap (walking round them); through the grid they use the heap. Both
+  // must clip the same ears in the same order, also where ears tie in
+  // quality exactly (squares, a symmetric octagon, regular shapes on a
+  // coarse grid) and where none is valid until a refill (reflex combs).
+  std::size_t triangles = 0;
+  const auto closed = [](std::size_t n) {
+    std::vector<std::uint32_t> loop(n);
+    for (std::uint32_t i = 0; i < n; ++i) loop[i] = i;
+    return loop;
+  };
+  for (const std::vector<IntPoint>& pts : std::vector<std::vector<IntPoint>>{
+           {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}},
+           {{0, 0, 0}, {30, 0, 0}, {30, 10, 0}, {0, 10, 0}},
+           {{2, 0, 0}, {4, 0, 0}, {6, 2, 0}, {6, 4, 0}, {4, 6, 0}, {2, 6, 0}, {0, 4, 0}, {0, 2, 0}},
+           {{0, 0, 0}, {12, 0, 0}, {12, 9, 0}, {11, 1, 0}, {9, 9, 0}, {7, 1, 0}, {5, 9, 0}, {3, 1, 0}, {1, 9, 0}, {0, 9, 0}}})
+    expect_same_ears_through_the_grid(grid_vertices(pts), closed(pts.size()), triangles);
+  std::mt19937 rng(53);
+  for (int round = 0; round < 400; ++round) {  // star-shaped, 4 to 16 vertices, radii on a coarse grid
+    const int n = 4 + round % 13;
+    std::uniform_int_distribution<int> radius(1, 4);
+    std::vector<IntPoint> pts;
+    for (int i = 0; i < n; ++i) {
+      const double angle = 2 * M_PI * i / n;
+      const double r = 10.0 * radius(rng);
+      pts.push_back({std::llround(r * std::cos(angle)), std::llround(r * std::sin(angle)), 0});
+    }
+    bool repeated = false;  // a star whose rounding repeats a point is no simple loop
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      for (std::size_t j = i + 1; j < pts.size(); ++j) repeated = repeated || pts[i] == pts[j];
+    if (repeated) continue;
+    expect_same_ears_through_the_grid(grid_vertices(pts), closed(pts.size()), triangles);
+  }
+  EXPECT_GT(triangles, 2000u);
+}
+
 }  // namespace
 }  // namespace ember::core

@@ -187,6 +187,62 @@ struct EarCandidate {
   bool operator<(const EarCandidate& o) const { return q != o.q ? q < o.q : node > o.node; }
 };
 
+/// The ears waiting to be tried, best first (EarCandidate's order): a heap
+/// (std::priority_queue's push_heap / pop_heap, so the ears come in the
+/// same order whatever memory holds it) in `heap`, with room for 2 n
+/// entries (it starts with n and each clip pops at least one and pushes
+/// two, n - 3 times). A vertex queued again makes its older entry stale.
+class HeapQueue {
+ public:
+  HeapQueue(std::span<EarNode> node, std::span<EarCandidate> heap) : node_(node), heap_(heap) {}
+  void push(std::uint32_t b, double q) {
+    heap_[queued_++] = {q, b, ++node_[b].version};
+    std::push_heap(heap_.begin(), heap_.begin() + static_cast<std::ptrdiff_t>(queued_));
+  }
+  /// The best vertex queued and not removed since, taken off the queue;
+  /// nullopt when none is left.
+  std::optional<std::uint32_t> pop() {
+    while (queued_ > 0) {
+      std::pop_heap(heap_.begin(), heap_.begin() + static_cast<std::ptrdiff_t>(queued_));
+      const EarCandidate c = heap_[--queued_];
+      if (!node_[c.node].removed && c.version == node_[c.node].version) return c.node;
+    }
+    return std::nullopt;
+  }
+
+ private:
+  std::span<EarNode> node_;
+  std::span<EarCandidate> heap_;
+  std::size_t queued_ = 0;
+};
+
+/// The same queue for short loops (at most kScanLoop vertices): each
+/// vertex's newest quality and whether it is queued, the best found by a
+/// scan (the heap's order: highest quality, then lowest vertex). A heap's
+/// pushes and pops cost more than scanning a handful of vertices (the
+/// direct route's faces: 4-6 vertices mostly).
+class ScanQueue {
+ public:
+  static constexpr std::size_t kScanLoop = 16;
+  explicit ScanQueue(std::span<const EarNode> node) : node_(node) {}
+  void push(std::uint32_t b, double q) {
+    q_[b] = q;
+    queued_[b] = true;
+  }
+  std::optional<std::uint32_t> pop() {
+    std::optional<std::uint32_t> best;
+    for (std::uint32_t i = 0; i < node_.size(); ++i)
+      if (queued_[i] && !node_[i].removed && (!best || q_[i] > q_[*best])) best = i;
+    if (best) queued_[*best] = false;
+    return best;
+  }
+
+ private:
+  std::span<const EarNode> node_;
+  std::array<double, kScanLoop> q_{};
+  std::array<bool, kScanLoop> queued_{};
+};
+
 /// The box of an ear's corners (their double approximations), worked out
 /// once per ear test rather than once per vertex tested against it.
 struct EarBox {
@@ -234,13 +290,10 @@ struct FromGrid {
 };
 
 /// The ear clipping of `loop` with working memory `node` (one per vertex)
-/// and `heap` (room for 2 n entries: it starts with n and each clip pops at
-/// least one and pushes two, n - 3 times). The heap is std::priority_queue's
-/// (push_heap / pop_heap), so the ears come in the same order whatever
-/// memory holds them.
-template <typename Others>
-bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarNode> node,
-               std::span<EarCandidate> heap, const Others& others, std::vector<std::array<std::uint32_t, 3>>& out) {
+/// and an ear queue (HeapQueue or ScanQueue over the same nodes).
+template <typename Others, typename Queue>
+bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarNode> node, Queue& queue,
+               const Others& others, std::vector<std::array<std::uint32_t, 3>>& out) {
   using Box = typename Others::Box;
   constexpr bool kSlacked = std::is_same_v<Box, SlackedEarBox>;
   const std::size_t before = out.size();
@@ -297,11 +350,7 @@ bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarN
     const double l2 = ux * ux + uy * uy + uz * uz + vx * vx + vy * vy + vz * vz + wx * wx + wy * wy + wz * wz;
     return l2 > 0 ? std::sqrt(cx * cx + cy * cy + cz * cz) / l2 : 0.0;
   };
-  std::size_t queued = 0;
-  auto push = [&](std::uint32_t b) {
-    heap[queued++] = {quality(b), b, ++node[b].version};
-    std::push_heap(heap.begin(), heap.begin() + static_cast<std::ptrdiff_t>(queued));
-  };
+  auto push = [&](std::uint32_t b) { queue.push(b, quality(b)); };
   auto push_all = [&] {
     for (std::uint32_t i = 0; i < size; ++i)
       if (!node[i].removed) push(i);
@@ -309,7 +358,8 @@ bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarN
   push_all();
   bool refilled = false;
   while (n > 3) {
-    if (queued == 0) {
+    const std::optional<std::uint32_t> next = queue.pop();
+    if (!next) {
       if (refilled) {  // a whole round without a valid ear
         out.resize(before);
         return false;
@@ -318,10 +368,8 @@ bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarN
       refilled = true;
       continue;
     }
-    std::pop_heap(heap.begin(), heap.begin() + static_cast<std::ptrdiff_t>(queued));
-    const EarCandidate c = heap[--queued];
-    if (node[c.node].removed || c.version != node[c.node].version || !is_ear(c.node)) continue;
-    const std::uint32_t b = c.node, a = node[b].prev, d = node[b].next;
+    if (!is_ear(*next)) continue;
+    const std::uint32_t b = *next, a = node[b].prev, d = node[b].next;
     out.push_back({loop[a], loop[b], loop[d]});
     node[a].next = d;
     node[d].prev = a;
@@ -351,17 +399,18 @@ bool triangulate_loop(std::span<const std::uint32_t> loop, const Plane& plane, c
   // Most loops are small (the direct route's faces: a handful of vertices):
   // their working memory lives on the stack, which saved the route a third
   // of its ear clipping's instructions in allocations.
-  constexpr std::size_t kSmall = 16;
+  constexpr std::size_t kSmall = ScanQueue::kScanLoop;
   if (loop.size() <= kSmall && loop.size() < grid_from) {
     std::array<EarNode, kSmall> node;
-    std::array<EarCandidate, 2 * kSmall> heap;
-    return clip_ears(k, loop, node, heap, WalkRound{}, out);
+    ScanQueue queue{std::span<const EarNode>(node.data(), loop.size())};
+    return clip_ears(k, loop, node, queue, WalkRound{}, out);
   }
   std::vector<EarNode> node(loop.size());
   std::vector<EarCandidate> heap(2 * loop.size());
-  if (loop.size() < grid_from) return clip_ears(k, loop, node, heap, WalkRound{}, out);
+  HeapQueue queue(node, heap);
+  if (loop.size() < grid_from) return clip_ears(k, loop, node, queue, WalkRound{}, out);
   LoopGrid grid(loop.size(), [&](std::size_t i) -> const std::array<double, 3>& { return k.pt(loop[i]).f; });
-  return clip_ears(k, loop, node, heap, FromGrid{grid}, out);
+  return clip_ears(k, loop, node, queue, FromGrid{grid}, out);
 }
 
 bool triangulate_region(const Regions& regions, std::uint32_t region, const OutputVertices& verts,
