@@ -45,7 +45,7 @@ bool crossing_before(i128 xa, i128 xb, i128 ya, i128 yb) {
 
 bool pair_chord(const GridTriangles& grid, const EdgeNames& names, std::uint32_t x, std::uint32_t y, PairChord& out) {
   const std::array<IntPoint, 3>&c = grid.corners[x], &d = grid.corners[y];
-  const std::array<std::int64_t, 3> n = grid_normal(c[0], c[1], c[2]), nf = grid_normal(d[0], d[1], d[2]);
+  const std::array<std::int64_t, 3>&n = grid.normals[x], &nf = grid.normals[y];
   i128 st[3], sf[3];  // x's corners against y's plane, y's against x's
   for (int i = 0; i < 3; ++i) {
     st[i] = grid_side(d[0], nf, c[i]);

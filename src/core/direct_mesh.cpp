@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <numeric>
 #include <optional>
@@ -21,6 +22,7 @@ std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box
                                             std::span<const Provenance> sources, const InputTopology& topology,
                                             const std::atomic<bool>& stop) {
   if (ctx.operands != 2 || topology.operand_base.size() != 3) return std::nullopt;
+  assert(grid.normals.size() == grid.corners.size());
   const auto clock = std::chrono::steady_clock::now();
   const std::size_t n = grid.corners.size();
   std::vector<std::uint32_t> operand_of(n);

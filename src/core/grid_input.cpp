@@ -93,10 +93,10 @@ int rounding_change(const Vec3d& a, const Vec3d& b, const Vec3d& c, const std::a
 
 namespace {
 
-/// What the grid did to an input triangle (rounding_change).
-int rounding_change(const Mesh& m, const GridTriangle& t) {
-  return core::rounding_change(m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]],
-                               grid_normal(t.p[0], t.p[1], t.p[2]));
+/// What the grid did to an input triangle (rounding_change), given its
+/// grid normal.
+int rounding_change(const Mesh& m, const GridTriangle& t, const std::array<std::int64_t, 3>& grid_normal) {
+  return core::rounding_change(m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]], grid_normal);
 }
 
 /// f(o) for every operand: side by side for small inputs (side_by_side),
@@ -257,6 +257,7 @@ void triangulate_faces(const Mesh& m, std::uint32_t o, const GridVertices& g, co
         const std::uint32_t va = face[a], vb = face[b], vc = face[c];
         gi.triangles[out] = {{g.pos[va], g.pos[vb], g.pos[vc]}, {va, vb, vc}, o, static_cast<std::uint32_t>(f)};
         gi.vertex_ids[out] = {id[va], id[vb], id[vc]};
+        gi.normals[out] = grid_normal(g.pos[va], g.pos[vb], g.pos[vc]);
         ++out;
       };
       if (face.size() == 3) {
@@ -283,6 +284,7 @@ GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q, const Used
     gi.operand_begin.push_back(gi.operand_begin.back() + m.indices.size() - 2 * m.face_count());
   gi.triangles.resize(gi.operand_begin.back());
   gi.vertex_ids.resize(gi.operand_begin.back());
+  gi.normals.resize(gi.operand_begin.back());
   // Small inputs: the operands side by side (kSideBySideTriangles). Each
   // chain writes its own slice; the box is joined after.
   gi.vertex_count.resize(operands.size());
@@ -315,7 +317,7 @@ void audit_quantization(std::span<const Mesh> operands, const GridInput& grid, c
         tbb::blocked_range<std::size_t>(grid.operand_begin[o], grid.operand_begin[o + 1], 4096), Counts{},
         [&](const tbb::blocked_range<std::size_t>& range, Counts c) {
           for (std::size_t i = range.begin(); i != range.end(); ++i) {
-            const int change = rounding_change(operands[o], grid.triangles[i]);
+            const int change = rounding_change(operands[o], grid.triangles[i], grid.normals[i]);
             if (change < 0) continue;
             ++c[0];
             if (change > 0) ++c[change];

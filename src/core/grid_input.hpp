@@ -36,6 +36,11 @@ struct GridInput {
   /// so independent of scheduling). For edge matching (closedness, the
   /// proof's components).
   FillVector<std::array<std::uint32_t, 3>> vertex_ids;
+  /// Per triangle, grid_normal of its corners (zero for one that collapsed
+  /// on the grid): computed once here for the audit, the set-up's drop of
+  /// degenerate triangles and, through GridTriangles::normals, the proof and
+  /// the broad phases.
+  FillVector<std::array<std::int64_t, 3>> normals;
   std::vector<std::size_t> operand_begin;  ///< operand o's triangles: [begin[o], begin[o+1])
   std::vector<std::size_t> vertex_count;   ///< per operand: how many welded ids it has
   std::array<std::int64_t, 3> lo{}, hi{};  ///< bounds of all grid vertices

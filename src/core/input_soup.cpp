@@ -134,17 +134,14 @@ EdgeMatching match_edges(const GridInput& gi) {
   return m;
 }
 
-InputTriangles build_grid_triangles(const GridInput& gi, const EdgeMatching& edges) {
+InputTriangles build_grid_triangles(GridInput& gi, const EdgeMatching& edges) {
   const std::size_t n = gi.triangles.size();
   // Pass 1: which triangles have area (the exact grid normal is non-zero;
   // make_triangle decides the same).
   FillVector<std::uint32_t> id(n + 1);  // pass 1 writes id[1..n]
   id[0] = 0;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const auto& p = gi.triangles[i].p;
-      id[i + 1] = grid_normal(p[0], p[1], p[2]) != std::array<std::int64_t, 3>{0, 0, 0};
-    }
+    for (std::size_t i = r.begin(); i != r.end(); ++i) id[i + 1] = gi.normals[i] != std::array<std::int64_t, 3>{0, 0, 0};
   });
   // Ids in input order over the kept triangles: an exclusive prefix sum.
   static_assert(sizeof(std::uint32_t) == 4);
@@ -167,6 +164,14 @@ InputTriangles build_grid_triangles(const GridInput& gi, const EdgeMatching& edg
   for (std::size_t o = 0; o < gi.operand_begin.size(); ++o) in.operand_begin[o] = id[gi.operand_begin[o]];
   in.sources.resize(kept);
   in.grid.corners.resize(kept);
+  // Most inputs drop nothing: then the normals are moved, not copied (a
+  // copy would hold both at the set-up's peak, 24 bytes per triangle more).
+  const bool keep_all = kept == n;
+  if (keep_all) {
+    in.grid.normals = std::move(gi.normals);
+  } else {
+    in.grid.normals.resize(kept);
+  }
   in.grid.vertex_ids.resize(kept);
   in.grid.manifold_edges.resize(kept);
   in.grid.neighbors.resize(kept);
@@ -177,6 +182,7 @@ InputTriangles build_grid_triangles(const GridInput& gi, const EdgeMatching& edg
       const GridTriangle& t = gi.triangles[i];
       const std::uint32_t k = id[i];
       in.grid.corners[k] = t.p;
+      if (!keep_all) in.grid.normals[k] = gi.normals[i];
       in.sources[k] = {t.operand, t.face};
       in.grid.vertex_ids[k] = gi.vertex_ids[i];
       in.grid.manifold_edges[k] = edges.manifold[i];

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <numeric>
 
 #include "core/contact_search.hpp"
@@ -175,6 +176,7 @@ std::vector<std::uint32_t> operand_members(const Soup& soup, std::uint32_t opera
 
 SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint32_t operand,
                          const OperandTrees* trees, std::atomic<bool>* intersecting) {
+  assert(grid.normals.size() == grid.corners.size());
   // With the trees, the operand's triangles are its range of ids; without,
   // the proof scans the soup anyway (below), so it is built now.
   std::vector<std::uint32_t> members;
@@ -193,7 +195,8 @@ SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i)
-                        tris[i] = contact_triangle(grid.corners[members[i]], grid.vertex_ids[members[i]]);
+                        tris[i] = contact_triangle(grid.corners[members[i]], grid.normals[members[i]],
+                                                   grid.vertex_ids[members[i]]);
                     });
   // tris holds all of the operand's triangles, as a star must. They are
   // the grid's triangles members[0] .. members[0] + size - 1 (an operand's

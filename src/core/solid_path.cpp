@@ -103,9 +103,7 @@ template <bool swap, bool Wide, bool Framed>
     if (m == 0) continue;
     const std::uint32_t ix = x_base + X.item(i);
     const std::array<IntPoint, 3>& tx = grid.corners[ix];
-    // Not stored per triangle: 24 bytes each at the proof's peak, for ~1%
-    // of the bunny pair's instructions.
-    const std::array<std::int64_t, 3> nx = grid_normal(tx[0], tx[1], tx[2]);
+    const std::array<std::int64_t, 3>& nx = grid.normals[ix];
     // All of y beside x's plane: none of its triangles meets x (pair019:
     // 82% of the pairs the boxes leave, dismissed eight at a time). Not for
     // one or two pairs, whose own tests cost about as much (the bunny pair:
@@ -118,7 +116,7 @@ template <bool swap, bool Wide, bool Framed>
       const std::array<IntPoint, 3>& ty = grid.corners[iy];
       const CornerSigns sides = x_plane.signs(ty);
       if (sides.strictly_one_side()) continue;
-      if (apart_triangles_meet(tx, nx, ty, sides))
+      if (apart_triangles_meet(tx, nx, ty, grid.normals[iy], sides))
         sink.local().emplace_back(swap ? iy : ix, swap ? ix : iy);
     }
   }
@@ -282,6 +280,7 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
   const bool wide = cpu_has_avx2();
   const std::size_t operands = trees.tree.size();
   assert(trees.diagonals.size() == operands);  // boolean frees them only after this search
+  assert(grid.normals.size() == grid.corners.size());
   for (std::size_t a = 0; a < operands; ++a)
     for (std::size_t b = a + 1; b < operands; ++b) {
       Side as{trees.tree[a], trees.diagonals[a], trees.begin[a]}, bs{trees.tree[b], trees.diagonals[b], trees.begin[b]};

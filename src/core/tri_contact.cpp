@@ -260,9 +260,10 @@ bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std
 }
 
 bool apart_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<std::int64_t, 3>& na,
-                          const std::array<IntPoint, 3>& b, const CornerSigns& sb) {
+                          const std::array<IntPoint, 3>& b, const std::array<std::int64_t, 3>& nb,
+                          const CornerSigns& sb) {
   assert(!sb.strictly_one_side());
-  return meet_from_signs(a, na, b, grid_normal(b[0], b[1], b[2]), sb);
+  return meet_from_signs(a, na, b, nb, sb);
 }
 
 int PlaneSideFilter::exact_sign(const IntPoint& p) const { return sign(grid_side(origin_, normal_, p)); }

@@ -19,6 +19,14 @@ inline bool degenerate(const Tri& t) {
   return n[0] == 0 && n[1] == 0 && n[2] == 0;
 }
 
+/// The grid normals of a GridTriangles filled by hand (the set-up stores
+/// them as it builds the triangles).
+inline void set_normals(core::GridTriangles& grid) {
+  grid.normals.resize(grid.corners.size());
+  for (std::size_t i = 0; i < grid.corners.size(); ++i)
+    grid.normals[i] = grid_normal(grid.corners[i][0], grid.corners[i][1], grid.corners[i][2]);
+}
+
 /// A rod of `count` long slivers along the diagonal-free direction d =
 /// (-47, 88, 9) (the sliver pile's rods run near it), placed at random in
 /// its section around `centre`, about 20,000 units long and tens to

@@ -8,6 +8,7 @@
 #include <optional>
 #include <random>
 
+#include "contact_test_util.hpp"
 #include "core/direct_faces.hpp"
 #include "geometry/oracle.hpp"
 #include "support/int_gmp.hpp"
@@ -192,6 +193,7 @@ TEST(DirectFaces, PairChordMatchesTheRationalIntersection) {
     };
     grid.corners[0] = triangle();
     grid.corners[1] = triangle();
+    set_normals(grid);
     const OracleChord want = oracle_chord(grid.corners[0], grid.corners[1], names);
     core::PairChord got;
     ASSERT_EQ(core::pair_chord(grid, names, 0, 1, got), want.general) << "pair " << i;

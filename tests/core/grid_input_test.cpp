@@ -153,7 +153,9 @@ TEST(GridWeld, IdsAreTheRanksOfTheDistinctPositions) {
     std::uint32_t next = 0;
     for (auto& [position, r] : rank) r = next++;
     ASSERT_EQ(gi.vertex_count[o], rank.size()) << "operand " << o;
-    if (o == 0) EXPECT_LT(rank.size(), used[o].size()) << "operand 0 repeats positions";
+    if (o == 0) {
+      EXPECT_LT(rank.size(), used[o].size()) << "operand 0 repeats positions";
+    }
     for (std::size_t t = gi.operand_begin[o]; t < gi.operand_begin[o + 1]; ++t)
       for (int k = 0; k < 3; ++k) {
         const IntPoint p = q.quantize(operands[o].vertices[gi.triangles[t].v[static_cast<std::size_t>(k)]]);

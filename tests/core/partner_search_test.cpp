@@ -50,6 +50,7 @@ void expect_exact_partners(const std::vector<std::vector<std::array<IntPoint, 3>
     }
     begin.push_back(static_cast<std::uint32_t>(grid.corners.size()));
   }
+  set_normals(grid);
   const std::size_t n = grid.corners.size();
   const core::OperandTrees trees = core::build_operand_trees(begin, grid.corners);
   const std::atomic<bool> never{false};
@@ -140,6 +141,7 @@ TEST(PartnerSearch, GivesUpPastItsBudgetAndOnlyThen) {
   core::GridTriangles grid;
   grid.corners.assign(a.begin(), a.end());
   grid.corners.insert(grid.corners.end(), b.begin(), b.end());
+  set_normals(grid);
   const std::size_t n = grid.corners.size();
   const core::OperandTrees trees = core::build_operand_trees({0, 200, static_cast<std::uint32_t>(n)}, grid.corners);
   const std::atomic<bool> never{false};

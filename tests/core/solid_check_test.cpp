@@ -286,7 +286,7 @@ TEST(TriangleContact, BesidePlaneMatchesTheGmpSides) {
 bool meet_from_filtered_signs(const Tri& a, const Tri& b) {
   const std::array<std::int64_t, 3> na = grid_normal(a[0], a[1], a[2]);
   const core::CornerSigns sides = core::PlaneSideFilter(a[0], na).signs(b);
-  return !sides.strictly_one_side() && core::apart_triangles_meet(a, na, b, sides);
+  return !sides.strictly_one_side() && core::apart_triangles_meet(a, na, b, grid_normal(b[0], b[1], b[2]), sides);
 }
 
 TEST(TriangleContact, PlaneSideFilterSignsAreTheGmpSigns) {
