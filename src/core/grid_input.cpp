@@ -255,7 +255,8 @@ void triangulate_faces(const Mesh& m, std::uint32_t o, const GridVertices& g, co
       std::size_t out = first + m.face_offsets[f] - 2 * f;
       const auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
         const std::uint32_t va = face[a], vb = face[b], vc = face[c];
-        gi.triangles[out] = {{g.pos[va], g.pos[vb], g.pos[vc]}, {va, vb, vc}, o, static_cast<std::uint32_t>(f)};
+        gi.triangles[out] = {{va, vb, vc}, o, static_cast<std::uint32_t>(f)};
+        gi.corners[out] = {g.pos[va], g.pos[vb], g.pos[vc]};
         gi.vertex_ids[out] = {id[va], id[vb], id[vc]};
         gi.normals[out] = grid_normal(g.pos[va], g.pos[vb], g.pos[vc]);
         ++out;
@@ -283,6 +284,7 @@ GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q, const Used
   for (const Mesh& m : operands)  // n - 2 triangles per face of n corners
     gi.operand_begin.push_back(gi.operand_begin.back() + m.indices.size() - 2 * m.face_count());
   gi.triangles.resize(gi.operand_begin.back());
+  gi.corners.resize(gi.operand_begin.back());
   gi.vertex_ids.resize(gi.operand_begin.back());
   gi.normals.resize(gi.operand_begin.back());
   // Small inputs: the operands side by side (kSideBySideTriangles). Each

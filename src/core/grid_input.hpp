@@ -21,16 +21,19 @@
 
 namespace ember::core {
 
+/// Where a grid triangle comes from.
 struct GridTriangle {
-  std::array<IntPoint, 3> p;
   std::array<std::uint32_t, 3> v;  ///< the corners' vertex indices in the operand's mesh
   std::uint32_t operand, face;
 };
 
 /// Its per-triangle arrays are FillVectors (fill_vector.hpp): to_grid sizes
-/// them, then writes every entry in parallel.
+/// them, then writes every entry in parallel. The arrays that GridTriangles
+/// keeps (corners, vertex ids, normals) are separate, so that
+/// build_grid_triangles can move them there.
 struct GridInput {
   FillVector<GridTriangle> triangles;    ///< operand by operand, faces in order
+  FillVector<std::array<IntPoint, 3>> corners;  ///< per triangle, its grid corners
   /// Per triangle, its corners' welded grid vertex ids: within one operand,
   /// equal ids iff equal grid positions (numbered in sorted position order,
   /// so independent of scheduling). For edge matching (closedness, the

@@ -41,10 +41,10 @@ EdgeMatching match_edges(const GridInput& gi);
 /// soup and the solve's output; the solid proof, the solid path and
 /// merge_whole_triangles read it too), grid.vertex_ids by id (the solid
 /// proof's edge matching, the mesh stage's weld), grid.manifold_edges and
-/// grid.neighbors by id (from `edges`, in GridInput order), grid.normals
-/// (gi's, moved out of it when no triangle is dropped: gi.normals is then
-/// left empty), and each operand's range of ids. The root soup itself is
-/// built from them where it is needed (root_problem.hpp).
+/// grid.neighbors by id (from `edges`, in GridInput order), grid.normals by
+/// id, and each operand's range of ids. When no triangle is dropped, gi's
+/// corners, vertex ids and normals are moved out of it (left empty). The
+/// root soup itself is built from them where it is needed (root_problem.hpp).
 struct InputTriangles {
   FillVector<Provenance> sources;
   GridTriangles grid;

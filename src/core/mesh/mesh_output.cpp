@@ -66,8 +66,9 @@ void write_indexed_mesh(std::span<const std::array<std::uint32_t, 3>> tris, std:
   });
   const std::size_t corners = 3 * total;
   FillVector<std::uint32_t> rank(corners + 1);  // flag, then the exclusive prefix count; every entry written
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, corners, 4096), [&](const auto& range) {
-    for (std::size_t c = range.begin(); c != range.end(); ++c) rank[c] = first_use[tris[c / 3][c % 3]] == c;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 1024), [&](const auto& range) {
+    for (std::size_t t = range.begin(); t != range.end(); ++t)
+      for (std::size_t k = 0; k < 3; ++k) rank[3 * t + k] = first_use[tris[t][k]] == 3 * t + k;
   });
   rank[corners] = 0;
   const std::uint32_t vertices = tbb::parallel_scan(
