@@ -31,11 +31,11 @@ std::optional<i128> narrow(const Int<B>& v) {
 }
 
 /// x / w + c rounded to the nearest double, for 0 < w and |x|, w < 2^120 and
-/// |c| < 2^63, where double arithmetic can tell (else nullopt; about one
-/// case in 2^20 on real points, and points near 0 or beyond 2^52 grid units
-/// from it, which ratio_to_double handles). The crossing points of the
-/// direct route are such ratios (|x| < 2^110, w < 2^84): this is 3-4x
-/// cheaper than the three-limb ratio.
+/// |c| < 2^63, where double arithmetic can tell (else nullopt, for
+/// ratio_to_double: values within 2^-50 of a rounding boundary, about one in
+/// 2^22 at 2^25 grid units, and values below 1 or beyond 2^52 grid units).
+/// The crossing points of the direct route are such ratios (|x| < 2^110,
+/// w < 2^84): this is 3-4x cheaper than the three-limb ratio.
 ///  1. q = floor(x / w) and r = x - q w in [0, w) exactly: from a double
 ///     quotient (error < 2 where |x / w| < 2^50), truncated (std::floor is
 ///     a libm call on the baseline target), corrected in i128.
