@@ -33,7 +33,8 @@ std::optional<i128> narrow(const Int<B>& v) {
 /// x / w + c rounded to the nearest double, for 0 < w and |x|, w < 2^120 and
 /// |c| < 2^63, where double arithmetic can tell (else nullopt, for
 /// ratio_to_double: values within 2^-50 of a rounding boundary, about one in
-/// 2^22 at 2^25 grid units, and values below 1 or beyond 2^52 grid units).
+/// 2^22 at 2^25 grid units, and values below 16 grid units, where half a gap
+/// is at most that, or beyond 2^52).
 /// The crossing points of the direct route are such ratios (|x| < 2^110,
 /// w < 2^84): this is 3-4x cheaper than the three-limb ratio.
 ///  1. q = floor(x / w) and r = x - q w in [0, w) exactly: from a double

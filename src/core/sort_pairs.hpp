@@ -36,22 +36,28 @@ void sort_pairs(std::vector<std::pair<Key, std::uint32_t>, Alloc>& v);
 /// (edge, face)): one radix sort by the key and these small sorts cost far
 /// less than radix passes over the whole order. Each run is sorted by the
 /// block its first pair falls in (it may reach past the block), long runs
-/// in parallel; the order being total, the result is unique.
+/// in parallel; the order being total, the result is unique. A run is
+/// sorted in a copy and only its values are written back: the keys, which
+/// the next block's owner reads to find its runs, are never written.
 template <typename Pairs, typename Before>
 void sort_equal_key_runs(Pairs& v, Before before) {
+  using Pair = std::pair<typename Pairs::value_type::first_type, std::uint32_t>;
   constexpr std::size_t kLongRun = 4096;
   const std::size_t n = v.size();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<Pair> run;
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       if (i > 0 && v[i - 1].first == v[i].first) continue;  // not a run's first pair
       std::size_t end = i + 1;
       while (end < n && v[end].first == v[i].first) ++end;
-      const auto first = v.begin() + static_cast<std::ptrdiff_t>(i), last = v.begin() + static_cast<std::ptrdiff_t>(end);
-      if (end - i >= kLongRun) {
-        tbb::parallel_sort(first, last, before);
-      } else if (end - i > 1) {
-        std::sort(first, last, before);
+      if (end - i < 2) continue;
+      run.assign(v.begin() + static_cast<std::ptrdiff_t>(i), v.begin() + static_cast<std::ptrdiff_t>(end));
+      if (run.size() >= kLongRun) {
+        tbb::parallel_sort(run.begin(), run.end(), before);
+      } else {
+        std::sort(run.begin(), run.end(), before);
       }
+      for (std::size_t k = 0; k < run.size(); ++k) v[i + k].second = run[k].second;
     }
   });
 }
