@@ -98,7 +98,8 @@ bool oracle_meet(const Tri& a, const Tri& b, bool any = false) {
   std::vector<Q3> set{q3(b[0]), q3(b[1]), q3(b[2])};
   const auto plane = [&](const Q3& x) { return dt(nA, sub(x, A[0])); };
   set = clip_keep(set, plane);
-  set = clip_keep(set, [&](const Q3& x) { return -plane(x); });  // B in A's plane
+  // mpq_class, not the expression template of a negated temporary (dangling).
+  set = clip_keep(set, [&](const Q3& x) -> mpq_class { return -plane(x); });  // B in A's plane
   for (int i = 0; i < 3 && !set.empty(); ++i) {
     const Q3 inward = crs(nA, sub(A[(i + 1) % 3], A[i]));
     set = clip_keep(set, [&](const Q3& x) { return dt(inward, sub(x, A[i])); });
