@@ -95,8 +95,8 @@ namespace {
 
 /// What the grid did to an input triangle (rounding_change), given its
 /// grid normal.
-int rounding_change(const Mesh& m, const GridTriangle& t, const std::array<std::int64_t, 3>& grid_normal) {
-  return core::rounding_change(m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]], grid_normal);
+int rounding_change(const Mesh& m, const GridTriangle& t, const std::array<std::int64_t, 3>& normal) {
+  return core::rounding_change(m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]], normal);
 }
 
 /// f(o) for every operand: side by side for small inputs (side_by_side),

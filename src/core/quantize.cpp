@@ -49,8 +49,8 @@ std::optional<i128> narrow(const Int<B>& v) {
 ///     that interval lies strictly inside s's rounding interval (half the
 ///     gap to each neighbouring double; the gap below a power of two is half
 ///     the one above), so there are never ties to break.
-std::optional<double> offset_ratio_to_double(i128 x, i128 w, std::int64_t c) {
-  const double dw = approx_to_double(w);
+/// `dw` is approx_to_double(w), shared by a point's three coordinates.
+std::optional<double> offset_ratio_to_double(i128 x, i128 w, double dw, std::int64_t c) {
   const double qd = approx_to_double(x) / dw;
   if (!(std::fabs(qd) < 0x1p50)) return std::nullopt;
   auto q = static_cast<std::int64_t>(qd);  // truncated: within 3 of floor(x / w)
@@ -155,8 +155,10 @@ Vec3d Quantizer::dequantize(const Point& p) const {
                                static_cast<std::int64_t>(p.z.limb(0))});
   const std::optional<i128> w = narrow(p.w), px = narrow(p.x), py = narrow(p.y), pz = narrow(p.z);
   if (w && px && py && pz) {
-    const std::optional<double> x = offset_ratio_to_double(*px, *w, c_[0]), y = offset_ratio_to_double(*py, *w, c_[1]),
-                                z = offset_ratio_to_double(*pz, *w, c_[2]);
+    const double dw = approx_to_double(*w);
+    const std::optional<double> x = offset_ratio_to_double(*px, *w, dw, c_[0]),
+                                y = offset_ratio_to_double(*py, *w, dw, c_[1]),
+                                z = offset_ratio_to_double(*pz, *w, dw, c_[2]);
     if (x && y && z) return Vec3d{*x * inv_scale_, *y * inv_scale_, *z * inv_scale_};
   }
   // x = (X + C W) / W * 2^-k: |C| < 9.0e18 < 2^63 (fit_box), W < 2^162 so

@@ -62,7 +62,8 @@ TEST(IntOracle, ApproxToDoubleOfI128IsWithinThreeRoundings) {
   std::vector<mpz_class> values = boundary_values(127);
   for (int bits = 1; bits <= 127; ++bits)
     for (int i = 0; i < 200; ++i) values.push_back(random_value(rng, bits));
-  for (const mpz_class& edge : std::vector<mpz_class>{pow2(63), pow2(64) - 1, pow2(64), pow2(53) + 1, pow2(117) + 1, pow2(127) - 1}) {
+  const std::vector<mpz_class> edges{pow2(63), pow2(64) - 1, pow2(64), pow2(53) + 1, pow2(117) + 1, pow2(127) - 1};
+  for (const mpz_class& edge : edges) {
     values.push_back(edge);
     values.push_back(edge - 1);
     values.push_back(-edge);
@@ -73,7 +74,7 @@ TEST(IntOracle, ApproxToDoubleOfI128IsWithinThreeRoundings) {
     const double d = approx_to_double(v);
     const mpq_class err = abs(mpq_class(d) - mpq_class(m));
     // 3 roundings: (1 + 2^-53)^3 - 1 < 2^-51.
-    ASSERT_LE(err, abs(mpq_class(m)) / mpq_class(mpz_class(1) << 51)) << m;
+    ASSERT_LE(err, abs(mpq_class(m)) / mpq_class(pow2(51))) << m;
     ASSERT_EQ(d < 0, m < 0) << m;
     ++checked;
   }
