@@ -74,6 +74,8 @@ bool pair_chord(const GridTriangles& grid, const EdgeNames& names, std::uint32_t
   //   orient3d(p, q, r, s) = m . (s - p) and orient3d(p, q, t, r) =
   //   -m . (t - p) with m = (q - p) x (r - p): one cross product for both
   //   (differences < 2^26: m < 2^53 in int64, each dot product < 2^81).
+  static_assert(kCoordLimit <= (std::int64_t{1} << 25) && 2 * 26 + 1 < 63 && 53 + 26 + 2 < 127,
+                "pair chord orientations: differences < 2^26, m < 2^53 in int64, three-term dots < 2^81");
   const auto crossing = [&](const IntPoint& p, const IntPoint& q, const std::array<IntPoint, 3>& other, int lone,
                             int& inside) {
     const IntPoint &r = other[static_cast<std::size_t>(lone)], &sv = other[static_cast<std::size_t>((lone + 1) % 3)],
