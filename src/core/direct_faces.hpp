@@ -52,7 +52,7 @@ struct CutFaces {
 /// (the operand's base plus its welded id), an edge as its two ids.
 struct EdgeNames {
   const InputTopology& topo;
-  const std::vector<std::uint32_t>& operand_of;
+  std::span<const std::uint32_t> operand_of;
   std::uint32_t vertex(std::uint32_t t, int k) const {
     return topo.operand_base[operand_of[t]] + topo.by_triangle[t][static_cast<std::size_t>(k)];
   }
@@ -98,7 +98,7 @@ struct ChordRef {
 /// triangles appended to a CutFaces.
 class TriangleCutter {
  public:
-  TriangleCutter(const GridTriangles& grid, const SolveContext& ctx, const std::vector<std::uint32_t>& operand_of)
+  TriangleCutter(const GridTriangles& grid, const SolveContext& ctx, std::span<const std::uint32_t> operand_of)
       : grid_(grid), ctx_(ctx), operand_of_(operand_of) {
     front_.resize(2);
     back_.resize(2);
@@ -183,7 +183,7 @@ class TriangleCutter {
 
   const GridTriangles& grid_;
   const SolveContext& ctx_;
-  const std::vector<std::uint32_t>& operand_of_;
+  std::span<const std::uint32_t> operand_of_;
   std::vector<Crossing> cross_, merged_;
   std::vector<std::uint32_t> order_, merged_at_;
   // Scratch: the boundary ring (local ids: 0-2 corners, 3 + i crossing i),

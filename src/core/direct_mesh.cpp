@@ -2,6 +2,7 @@
 #include "core/direct_mesh.hpp"
 
 #include "core/direct_faces.hpp"
+#include "core/parallel_select.hpp"
 #include "core/sort_pairs.hpp"
 
 #include <tbb/blocked_range.h>
@@ -25,12 +26,14 @@ std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box
   assert(grid.normals.size() == grid.corners.size());
   const auto clock = std::chrono::steady_clock::now();
   const std::size_t n = grid.corners.size();
-  std::vector<std::uint32_t> operand_of(n);
-  std::vector<std::uint32_t> touched;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    operand_of[i] = i < trees.begin[1] ? 0 : 1;  // two operands (above)
-    if (partners.touched(i)) touched.push_back(i);
-  }
+  // Two operands (above); both lists in parallel (as serial passes over
+  // every triangle they were a few ms of one thread on large inputs).
+  FillVector<std::uint32_t> operand_of(n);  // every entry written here
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) operand_of[i] = i < trees.begin[1] ? 0 : 1;
+  });
+  const FillVector<std::uint32_t> touched =
+      parallel_indices_where(n, [&](std::size_t i) { return partners.touched(static_cast<std::uint32_t>(i)); });
   // Each meeting pair's chord once, by its smaller triangle x (computing it
   // in each triangle, with its orientations and crossing points, was half of
   // the cutting). The chords of x = touched[i] with its partners above x
@@ -96,7 +99,7 @@ std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box
         }
   });
   if (failed.load() || stop.load()) return std::nullopt;
-  const std::optional<std::vector<KeptTriangle>> untouched = solid_untouched(grid, box, ctx, trees, partners, stop);
+  const std::optional<FillVector<KeptTriangle>> untouched = solid_untouched(grid, box, ctx, trees, partners, stop);
   if (!untouched) return std::nullopt;
 
   // One vertex per name: input vertices keep their global ids, crossing
@@ -146,6 +149,7 @@ std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box
   for (std::size_t b = 0; b < blocks.size(); ++b) tri_at[b + 1] = tri_at[b] + blocks[b].tris.size();
   FillVector<std::array<std::uint32_t, 3>> tris(tri_at.back());  // every entry written below
   MeshOutput out;
+  reserve_touched(out.provenance, tris.size());  // its pages faulted in parallel before the serial resize
   out.provenance.resize(tris.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, untouched->size(), 1024), [&](const auto& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -166,7 +170,7 @@ std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box
     }
   });
   // Where each input vertex is: any corner that names it (all are the same point).
-  std::vector<std::uint32_t> corner_of(inputs, 0);
+  FillVector<std::uint32_t> corner_of = parallel_filled<std::uint32_t>(inputs, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
     for (std::size_t t = range.begin(); t != range.end(); ++t)
       for (std::size_t k = 0; k < 3; ++k)

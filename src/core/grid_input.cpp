@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "core/parallel_select.hpp"
 #include "core/sort_pairs.hpp"
 #include "core/triangulate.hpp"
 #include "ember/error.hpp"
@@ -120,18 +121,19 @@ std::string format_step(double step) {
 
 UsedVertices used_vertices(std::span<const Mesh> operands) {
   UsedVertices used(operands.size());
-  // Operand by operand: each pass is parallel over the operand's indices.
+  // Operand by operand: each pass is parallel over the operand's indices
+  // or vertices (a serial list of the used ones was a stretch of one
+  // thread's work on large inputs).
   for (std::size_t o = 0; o < operands.size(); ++o) {
     const Mesh& m = operands[o];
-    std::vector<std::uint8_t> is_used(m.vertices.size(), 0);
+    FillVector<std::uint8_t> is_used = parallel_filled<std::uint8_t>(m.vertices.size(), 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.indices.size(), 4096),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         // Several faces share a vertex: every writer stores the same 1.
                         for (std::size_t i = r.begin(); i != r.end(); ++i)
                           std::atomic_ref<std::uint8_t>(is_used[m.indices[i]]).store(1, std::memory_order_relaxed);
                       });
-    for (std::uint32_t v = 0; v < is_used.size(); ++v)
-      if (is_used[v]) used[o].push_back(v);
+    used[o] = parallel_indices_where(is_used.size(), [&](std::size_t v) { return is_used[v] != 0; });
   }
   return used;
 }
@@ -153,7 +155,7 @@ Quantizer fit_used_vertices(std::span<const Mesh> operands, const UsedVertices& 
   bool any = false;
   for (std::size_t o = 0; o < operands.size(); ++o) {
     const Mesh& m = operands[o];
-    const std::vector<std::uint32_t>& u = used[o];
+    const FillVector<std::uint32_t>& u = used[o];
     if (u.empty()) continue;
     any = true;
     // Min and max are exact and order-free, so the split does not matter.
@@ -175,22 +177,49 @@ Quantizer fit_used_vertices(std::span<const Mesh> operands, const UsedVertices& 
 
 namespace {
 
+/// Lowest and highest grid coordinates, per axis.
+using GridBounds = std::array<std::array<std::int64_t, 3>, 2>;
+constexpr GridBounds kEmptyBounds{{{Quantizer::kLimit, Quantizer::kLimit, Quantizer::kLimit},
+                                   {-Quantizer::kLimit, -Quantizer::kLimit, -Quantizer::kLimit}}};
+
+GridBounds joined(GridBounds a, const GridBounds& b) {
+  for (int k = 0; k < 3; ++k) {
+    a[0][k] = std::min(a[0][k], b[0][k]);
+    a[1][k] = std::max(a[1][k], b[1][k]);
+  }
+  return a;
+}
+
 /// Grid positions of the vertices operand m's faces use (the others stay
-/// unset: they may lie outside the fitted box).
+/// unset and are never read: they may lie outside the fitted box), and
+/// their bounds.
 struct GridVertices {
-  std::vector<IntPoint> pos;
+  FillVector<IntPoint> pos;
   std::span<const std::uint32_t> used;  ///< the used vertex indices, increasing (used_vertices)
+  GridBounds bounds = kEmptyBounds;
 };
 
+/// In one parallel pass (the bounds were a serial pass of their own, and
+/// the positions' value-initialization another).
 GridVertices quantize_used(const Mesh& m, const Quantizer& q, std::span<const std::uint32_t> used) {
   GridVertices g;
-  g.pos.resize(m.vertices.size());
+  g.pos.resize(m.vertices.size());  // written at the used vertices below
   g.used = used;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.used.size(), 2048),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t i = r.begin(); i != r.end(); ++i)
-                        g.pos[g.used[i]] = q.quantize(m.vertices[g.used[i]]);
-                    });
+  g.bounds = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, g.used.size(), 2048), kEmptyBounds,
+      [&](const tbb::blocked_range<std::size_t>& r, GridBounds b) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          const IntPoint p = q.quantize(m.vertices[g.used[i]]);
+          g.pos[g.used[i]] = p;
+          const std::int64_t c[3] = {p.x, p.y, p.z};
+          for (int k = 0; k < 3; ++k) {
+            b[0][k] = std::min(b[0][k], c[k]);
+            b[1][k] = std::max(b[1][k], c[k]);
+          }
+        }
+        return b;
+      },
+      joined);
   return g;
 }
 
@@ -201,7 +230,7 @@ GridVertices quantize_used(const Mesh& m, const Quantizer& q, std::span<const st
 /// by (y, z, index) (sort_equal_key_runs). Runs are mostly single vertices,
 /// so this is three radix passes where a second sort by (y, z) took five
 /// more (a comparison sort of the tuples was ~2% of a large Boolean's time).
-std::size_t weld_grid_vertices(const GridVertices& g, std::vector<std::uint32_t>& id) {
+std::size_t weld_grid_vertices(const GridVertices& g, FillVector<std::uint32_t>& id) {
   // |coordinate| <= kLimit < 2^25: offset by 2^25, each fits 27 bits.
   static_assert(Quantizer::kLimit < (std::int64_t{1} << 25), "grid coordinates + 2^25 fit 27 bits");
   const auto offset = [](std::int64_t c) { return static_cast<std::uint32_t>(c + (std::int64_t{1} << 25)); };
@@ -219,7 +248,7 @@ std::size_t weld_grid_vertices(const GridVertices& g, std::vector<std::uint32_t>
   // A new id wherever the position changes along that order: a parallel
   // prefix sum (the serial numbering loop was 12-15 ms of each operand's
   // set-up at 16 threads on the 1.08M-triangle union).
-  id.assign(g.pos.size(), 0);
+  id.resize(g.pos.size());  // written at every used vertex below (the others are never read)
   const std::uint32_t last = tbb::parallel_scan(
       tbb::blocked_range<std::size_t>(0, n, 4096), std::uint32_t{0},
       [&](const tbb::blocked_range<std::size_t>& r, std::uint32_t next, bool final) {
@@ -233,19 +262,8 @@ std::size_t weld_grid_vertices(const GridVertices& g, std::vector<std::uint32_t>
   return n == 0 ? 0 : last + 1;
 }
 
-/// Widens [lo, hi] to hold the used grid vertices.
-void bound(const GridVertices& g, std::array<std::int64_t, 3>& lo, std::array<std::int64_t, 3>& hi) {
-  for (const std::uint32_t v : g.used) {
-    const std::int64_t c[3] = {g.pos[v].x, g.pos[v].y, g.pos[v].z};
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], c[a]);
-      hi[a] = std::max(hi[a], c[a]);
-    }
-  }
-}
-
 /// Writes the n - 2 triangles of every face of operand o from `first` on.
-void triangulate_faces(const Mesh& m, std::uint32_t o, const GridVertices& g, const std::vector<std::uint32_t>& id,
+void triangulate_faces(const Mesh& m, std::uint32_t o, const GridVertices& g, const FillVector<std::uint32_t>& id,
                        std::size_t first, GridInput& gi) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.face_count(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<IntPoint> corners;
@@ -278,8 +296,6 @@ void triangulate_faces(const Mesh& m, std::uint32_t o, const GridVertices& g, co
 
 GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q, const UsedVertices& used) {
   GridInput gi;
-  gi.lo = {Quantizer::kLimit, Quantizer::kLimit, Quantizer::kLimit};
-  gi.hi = {-Quantizer::kLimit, -Quantizer::kLimit, -Quantizer::kLimit};
   gi.operand_begin.push_back(0);
   for (const Mesh& m : operands)  // n - 2 triangles per face of n corners
     gi.operand_begin.push_back(gi.operand_begin.back() + m.indices.size() - 2 * m.face_count());
@@ -290,20 +306,19 @@ GridInput to_grid(std::span<const Mesh> operands, const Quantizer& q, const Used
   // Small inputs: the operands side by side (kSideBySideTriangles). Each
   // chain writes its own slice; the box is joined after.
   gi.vertex_count.resize(operands.size());
-  std::vector<std::array<std::array<std::int64_t, 3>, 2>> box(operands.size(), {gi.lo, gi.hi});
+  std::vector<GridBounds> box(operands.size(), kEmptyBounds);
   const auto chain = [&](std::size_t o) {
     const GridVertices g = quantize_used(operands[o], q, used[o]);
-    bound(g, box[o][0], box[o][1]);
-    std::vector<std::uint32_t> id;
+    box[o] = g.bounds;
+    FillVector<std::uint32_t> id;
     gi.vertex_count[o] = weld_grid_vertices(g, id);
     triangulate_faces(operands[o], static_cast<std::uint32_t>(o), g, id, gi.operand_begin[o], gi);
   };
   for_each_operand(gi, operands.size(), chain);
-  for (const auto& [lo, hi] : box)
-    for (int a = 0; a < 3; ++a) {
-      gi.lo[a] = std::min(gi.lo[a], lo[a]);
-      gi.hi[a] = std::max(gi.hi[a], hi[a]);
-    }
+  GridBounds all = kEmptyBounds;
+  for (const GridBounds& b : box) all = joined(all, b);
+  gi.lo = all[0];
+  gi.hi = all[1];
   return gi;
 }
 

@@ -51,7 +51,7 @@ struct GridInput {
 
 /// Per operand, the indices of the vertices its faces use, increasing. The
 /// operands must have passed validation (indices in range).
-using UsedVertices = std::vector<std::vector<std::uint32_t>>;
+using UsedVertices = std::vector<FillVector<std::uint32_t>>;
 UsedVertices used_vertices(std::span<const Mesh> operands);
 
 /// The quantization map fitted to the vertices that faces use (the bounding

@@ -13,6 +13,7 @@
 #include <numeric>
 
 #include "core/contact_search.hpp"
+#include "core/parallel_select.hpp"
 #include "core/operand_trees.hpp"
 #include "core/root_problem.hpp"
 #include "core/solid_trace.hpp"
@@ -132,13 +133,15 @@ std::vector<std::uint32_t> components(const GridTriangles& grid, std::uint32_t f
     });
   }
   if (first != 0)
-    for (std::uint32_t& p : parent) p += first;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) parent[i] += first;
+    });
   return parent;
 }
 
 }  // namespace
 
-std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, const std::vector<char>& keep) {
+std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, std::span<const char> keep) {
   return components(grid, 0, keep.size(), [&](std::size_t i) { return keep[i] != 0; });
 }
 
@@ -148,28 +151,12 @@ std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, std::
 
 namespace {
 
-/// The ids of the operand's polygons, in soup order: a parallel filter over
-/// fixed blocks (count, offsets, fill). A serial scan of the 1.08M-triangle
-/// union's root soup (86 MB) was ~20 ms of each operand's proof at any
-/// thread count.
-std::vector<std::uint32_t> operand_members(const Soup& soup, std::uint32_t operand) {
-  constexpr std::size_t kBlock = 16384;
-  const std::size_t blocks = (soup.size() + kBlock - 1) / kBlock;
-  std::vector<std::size_t> offset(blocks + 1, 0);
-  const auto for_each_member = [&](std::size_t b, auto&& f) {
-    for (std::size_t i = b * kBlock, end = std::min(soup.size(), i + kBlock); i < end; ++i)
-      if (soup[i].operand == operand) f(soup[i].id);
-  };
-  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
-    for_each_member(b, [&](std::uint32_t) { ++offset[b + 1]; });
-  });
-  for (std::size_t b = 0; b < blocks; ++b) offset[b + 1] += offset[b];
-  std::vector<std::uint32_t> members(offset[blocks]);
-  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
-    std::size_t at = offset[b];
-    for_each_member(b, [&](std::uint32_t id) { members[at++] = id; });
-  });
-  return members;
+/// The ids of the operand's polygons, in soup order, selected in parallel
+/// (a serial scan of the 1.08M-triangle union's root soup, 86 MB, was
+/// ~20 ms of each operand's proof at any thread count).
+FillVector<std::uint32_t> operand_members(const Soup& soup, std::uint32_t operand) {
+  return parallel_select<std::uint32_t>(
+      soup.size(), [&](std::size_t i) { return soup[i].operand == operand; }, [&](std::size_t i) { return soup[i].id; });
 }
 
 }  // namespace
@@ -179,10 +166,13 @@ SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint
   assert(grid.normals.size() == grid.corners.size());
   // With the trees, the operand's triangles are its range of ids; without,
   // the proof scans the soup anyway (below), so it is built now.
-  std::vector<std::uint32_t> members;
+  FillVector<std::uint32_t> members;
   if (trees) {
-    members.resize(root.operand_begin()[operand + 1] - root.operand_begin()[operand]);
-    std::iota(members.begin(), members.end(), root.operand_begin()[operand]);
+    const std::uint32_t first = root.operand_begin()[operand];
+    members.resize(root.operand_begin()[operand + 1] - first);  // every entry written here
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) members[i] = first + static_cast<std::uint32_t>(i);
+    });
   } else {
     members = operand_members(root.with_soup().soup, operand);
   }
@@ -216,17 +206,19 @@ SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint
   if (contacts.gave_up) return {SolidVerdict::TooComplex, 0, 0};
   // One representative per component across manifold edges: its smallest
   // id, the first member in order.
-  std::vector<std::uint32_t> reps;
+  // (Selected in parallel: a serial pass over the members is a stretch of
+  // one thread's work.)
+  FillVector<std::uint32_t> reps;
+  const auto member = [&](std::size_t i) { return members[i]; };
   if (consecutive) {  // the operand's range of ids alone
     const std::vector<std::uint32_t> component = neighbour_components(grid, members.front(), members.size());
-    for (const std::uint32_t m : members)
-      if (component[m - members.front()] == m) reps.push_back(m);
+    reps = parallel_select<std::uint32_t>(members.size(), [&](std::size_t i) { return component[i] == members[i]; }, member);
   } else {
     std::vector<char> keep(grid.neighbors.size(), 0);
     for (const std::uint32_t m : members) keep[m] = 1;
     const std::vector<std::uint32_t> component = neighbour_components(grid, keep);
-    for (const std::uint32_t m : members)
-      if (component[m] == m) reps.push_back(m);
+    reps = parallel_select<std::uint32_t>(members.size(), [&](std::size_t i) { return component[members[i]] == members[i]; },
+                                          member);
   }
   // With the operand's tree (its item i is triangle members.front() + i),
   // one tree query per trace; a trace that found no non-degenerate path

@@ -66,7 +66,7 @@ struct GridTriangles {
 /// edges (GridTriangles::neighbors, both ends kept): per kept triangle the
 /// smallest id of its component (other entries unspecified). Shared by the
 /// proof's components and the solid path's untouched ones.
-std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, const std::vector<char>& keep);
+std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, std::span<const char> keep);
 /// The same for all triangles first .. first + count - 1 (an operand's range
 /// of ids) and the manifold edges between them: entry i is triangle first +
 /// i's. Linear in count, not in all triangles.

@@ -20,6 +20,7 @@
 #include "core/frame_sample.hpp"
 #include "core/leaf_frame_extents.hpp"
 #include "core/operand_trees.hpp"
+#include "core/parallel_select.hpp"
 #include "core/pieces.hpp"
 #include "core/solid_cuts.hpp"
 #include "core/solid_handover.hpp"
@@ -345,26 +346,39 @@ OutputPolygon output_of(const GridTriangles& grid, std::uint32_t id, std::uint32
 /// component's smallest id, ascending) and, per untouched triangle, its
 /// component's index in `roots`.
 struct Components {
-  std::vector<std::uint32_t> roots;
+  FillVector<std::uint32_t> roots;
   std::vector<std::uint32_t> index;
 };
 
-Components untouched_components(const GridTriangles& grid, const std::vector<char>& touched) {
-  std::vector<char> untouched(touched.size());
-  for (std::size_t i = 0; i < touched.size(); ++i) untouched[i] = !touched[i];
+/// Per triangle, whether another operand's triangle meets it (in parallel:
+/// a serial pass over every triangle is a stretch of one thread's work).
+FillVector<char> touched_flags(const Partners& partners, std::size_t n) {
+  FillVector<char> touched(n);  // every entry written here
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) touched[i] = partners.touched(static_cast<std::uint32_t>(i));
+  });
+  return touched;
+}
+
+Components untouched_components(const GridTriangles& grid, std::span<const char> touched) {
+  const std::size_t n = touched.size();
+  FillVector<char> untouched(n);  // every entry written here
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) untouched[i] = !touched[i];
+  });
   Components c;
-  c.index = neighbour_components(grid, untouched);
-  // Roots come first in id order: each becomes its component's index, which
-  // the later members of the component then read.
-  for (std::uint32_t i = 0; i < c.index.size(); ++i) {
-    if (!untouched[i]) continue;
-    if (c.index[i] == i) {
-      c.index[i] = static_cast<std::uint32_t>(c.roots.size());
-      c.roots.push_back(i);
-    } else {
-      c.index[i] = c.index[c.index[i]];
-    }
-  }
+  c.index = neighbour_components(grid, untouched);  // each untouched triangle's root: its component's smallest id
+  c.roots = parallel_indices_where(n, [&](std::size_t i) { return untouched[i] && c.index[i] == i; });
+  // Each member takes its root's rank among the roots, in two parallel
+  // passes (a serial pass over every triangle did it in one).
+  FillVector<std::uint32_t> rank(n);  // written at the roots only, and read only there
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, c.roots.size(), 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) rank[c.roots[k]] = static_cast<std::uint32_t>(k);
+  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      if (untouched[i]) c.index[i] = rank[c.index[i]];
+  });
   return c;
 }
 
@@ -372,7 +386,7 @@ Components untouched_components(const GridTriangles& grid, const std::vector<cha
 /// has an edge (of positive length: f is strictly convex), or kNoNeighbor.
 /// f's edges on t's edges keep t's edge planes (clip copies them).
 std::uint32_t untouched_neighbour_along(const Polygon& f, const Polygon& t, const std::array<std::uint32_t, 3>& neighbours,
-                                        const std::vector<char>& touched) {
+                                        std::span<const char> touched) {
   for (int k = 0; k < 3; ++k) {
     const std::uint32_t u = neighbours[k];
     if (u == kNoNeighbor || touched[u]) continue;
@@ -388,8 +402,7 @@ class SolidSolver {
   SolidSolver(const GridTriangles& grid, const Box& box, const SolveContext& ctx, const OperandTrees& trees,
               const Partners& partners, const std::atomic<bool>& stop)
       : grid_(grid), ctx_(ctx), trees_(trees), partners_(partners), stop_(stop), operands_(ctx.operands),
-        tracer_{grid.corners, trees, box, ctx.operands}, touched_(grid.corners.size()) {
-    for (std::uint32_t i = 0; i < touched_.size(); ++i) touched_[i] = partners.touched(i);
+        tracer_{grid.corners, trees, box, ctx.operands}, touched_(touched_flags(partners, grid.corners.size())) {
     comps_ = untouched_components(grid, touched_);
   }
 
@@ -442,10 +455,10 @@ class SolidSolver {
 
   /// The untouched triangles on the result's surface, by id, each with its
   /// orientation: one trace per component decided them (step 2).
-  /// Written in parallel at offsets counted per block of ids (a serial
-  /// push_back of every kept triangle was most of a large, lightly touched
-  /// Boolean's solve, and slower at 2 threads than at 1).
-  std::vector<KeptTriangle> kept_untouched() const {
+  /// Selected in parallel (a serial push_back of every kept triangle was
+  /// most of a large, lightly touched Boolean's solve, and slower at 2
+  /// threads than at 1).
+  FillVector<KeptTriangle> kept_untouched() const {
     std::vector<char> keep(comps_.roots.size());
     Wnv front, back;
     for (std::size_t k = 0; k < comps_.roots.size(); ++k) {
@@ -453,29 +466,14 @@ class SolidSolver {
       bool flip = false;
       keep[k] = emitted(front, back, flip) ? (flip ? 2 : 1) : 0;
     }
-    const std::size_t n = grid_.corners.size();
-    const auto kept = [&](std::uint32_t i) { return !touched_[i] && keep[comps_.index[i]] != 0; };
-    constexpr std::size_t kBlock = 4096;
-    const std::size_t blocks = (n + kBlock - 1) / kBlock;
-    std::vector<std::size_t> at(blocks + 1, 0);
-    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
-      for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) at[b + 1] += kept(static_cast<std::uint32_t>(i));
-    });
-    std::partial_sum(at.begin(), at.end(), at.begin());
-    std::vector<KeptTriangle> out(at.back());
-    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
-      std::size_t slot = at[b];
-      for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
-        const auto id = static_cast<std::uint32_t>(i);
-        if (kept(id)) out[slot++] = {id, keep[comps_.index[id]] == 2};
-      }
-    });
-    return out;
+    return parallel_select<KeptTriangle>(
+        grid_.corners.size(), [&](std::size_t i) { return !touched_[i] && keep[comps_.index[i]] != 0; },
+        [&](std::size_t i) { return KeptTriangle{static_cast<std::uint32_t>(i), keep[comps_.index[i]] == 2}; });
   }
 
   /// Step 4: the kept untouched triangles by id, then the chunks in order.
   std::vector<OutputPolygon> output(std::vector<std::vector<OutputPolygon>> chunk_out) const {
-    const std::vector<KeptTriangle> kept = kept_untouched();
+    const FillVector<KeptTriangle> kept = kept_untouched();
     std::vector<std::size_t> at(chunk_out.size() + 1, kept.size());
     for (std::size_t c = 0; c < chunk_out.size(); ++c) at[c + 1] = at[c] + chunk_out[c].size();
     std::vector<OutputPolygon> out(at.back());
@@ -662,7 +660,7 @@ class SolidSolver {
   const std::atomic<bool>& stop_;  ///< abandon the run (solve_solid)
   std::size_t operands_;
   Tracer tracer_;
-  std::vector<char> touched_;
+  FillVector<char> touched_;
   Components comps_;
   std::vector<int> comp_w_;
 };
@@ -685,7 +683,7 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const GridTriangles& grid,
   return solver.output(std::move(touched_out));
 }
 
-std::optional<std::vector<KeptTriangle>> solid_untouched(const GridTriangles& grid, const Box& box,
+std::optional<FillVector<KeptTriangle>> solid_untouched(const GridTriangles& grid, const Box& box,
                                                          const SolveContext& ctx, const OperandTrees& trees,
                                                          const Partners& partners, const std::atomic<bool>& stop) {
   SolidSolver solver(grid, box, ctx, trees, partners, stop);

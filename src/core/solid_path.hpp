@@ -116,7 +116,7 @@ struct KeptTriangle {
 /// the touched triangles itself: the untouched triangles on the result's
 /// surface, by id, classified by one trace per component. nullopt if a
 /// trace failed or `stop` was set.
-std::optional<std::vector<KeptTriangle>> solid_untouched(const GridTriangles& grid, const Box& box,
+std::optional<FillVector<KeptTriangle>> solid_untouched(const GridTriangles& grid, const Box& box,
                                                          const SolveContext& ctx, const OperandTrees& trees,
                                                          const Partners& partners, const std::atomic<bool>& stop);
 

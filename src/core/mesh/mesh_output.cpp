@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "core/fill_vector.hpp"
+#include "core/parallel_select.hpp"
 #include "core/mesh/vertex_index.hpp"
 
 namespace ember::core {
@@ -59,7 +60,7 @@ void write_indexed_mesh(std::span<const std::array<std::uint32_t, 3>> tris, std:
   // A vertex's number is the rank of its first use among all first uses
   // (3 * triangle + corner): flag the corners that are one, then a prefix
   // count along the corners, all in parallel, as a serial pass would number them.
-  std::vector<std::uint64_t> first_use(vertex_count, UINT64_MAX);
+  FillVector<std::uint64_t> first_use = parallel_filled<std::uint64_t>(vertex_count, UINT64_MAX);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 1024), [&](const auto& range) {
     for (std::size_t t = range.begin(); t != range.end(); ++t)
       for (int c = 0; c < 3; ++c) atomic_min(first_use[tris[t][c]], 3 * t + static_cast<std::uint64_t>(c));
@@ -83,6 +84,12 @@ void write_indexed_mesh(std::span<const std::array<std::uint32_t, 3>> tris, std:
       },
       [](std::uint32_t a, std::uint32_t b) { return a + b; });
   const auto remap = [&](std::uint32_t v) { return rank[first_use[v]]; };
+  // The mesh's arrays are plain vectors: their resize value-initializes
+  // serially, so their pages are faulted in first, in parallel (on the
+  // 1.08M-triangle union the three were ~20 MB).
+  reserve_touched(mesh.vertices, vertices);
+  reserve_touched(mesh.indices, 3 * total);
+  reserve_touched(mesh.face_offsets, total + 1);
   mesh.vertices.resize(vertices);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, first_use.size(), 4096), [&](const auto& range) {
     for (std::size_t v = range.begin(); v != range.end(); ++v)
