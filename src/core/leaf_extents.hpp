@@ -120,7 +120,7 @@ class LeafExtents {
     std::int32_t lo[D][TriangleTree::kLeaf], hi[D][TriangleTree::kLeaf];
   };
   std::size_t first_leaf_ = 0;
-  std::vector<Block> block_;
+  FillVector<Block> block_;  ///< every slot written by fill
 };
 
 }  // namespace ember::core

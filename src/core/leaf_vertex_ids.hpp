@@ -113,7 +113,7 @@ class LeafVertexIds {
     std::uint32_t id[3][TriangleTree::kLeaf];
   };
   std::size_t first_leaf_;
-  std::vector<Block> block_;
+  FillVector<Block> block_;  ///< every slot written by fill_leaf_blocks
 };
 
 }  // namespace ember::core

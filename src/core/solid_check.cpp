@@ -32,7 +32,7 @@ namespace {
 // instructions, all of it serial). Links are compare-and-swaps on roots;
 // path halving stores an ancestor (a smaller id of the same set), which is
 // correct whenever it lands.
-using Parents = std::vector<std::uint32_t>;
+using Parents = FillVector<std::uint32_t>;
 
 std::uint32_t load(Parents& parent, std::uint32_t x) {
   return std::atomic_ref<std::uint32_t>(parent[x]).load(std::memory_order_relaxed);
@@ -108,13 +108,13 @@ Parents serial_components(const GridTriangles& grid, std::uint32_t first, std::s
 /// across manifold edges inside that range: per kept triangle first + i,
 /// entry i is the smallest id of its component.
 template <typename Keep>
-std::vector<std::uint32_t> components(const GridTriangles& grid, std::uint32_t first, std::size_t count,
+FillVector<std::uint32_t> components(const GridTriangles& grid, std::uint32_t first, std::size_t count,
                                       const Keep& keep) {
   Parents parent;
   if (tbb::this_task_arena::max_concurrency() == 1) {
     parent = serial_components(grid, first, count, keep);
   } else {
-    parent.resize(count);
+    parent.resize(count);  // every entry written below (a value-initializing resize was a serial pass)
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) parent[i] = static_cast<std::uint32_t>(i);
     });
@@ -141,11 +141,11 @@ std::vector<std::uint32_t> components(const GridTriangles& grid, std::uint32_t f
 
 }  // namespace
 
-std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, std::span<const char> keep) {
+FillVector<std::uint32_t> neighbour_components(const GridTriangles& grid, std::span<const char> keep) {
   return components(grid, 0, keep.size(), [&](std::size_t i) { return keep[i] != 0; });
 }
 
-std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, std::uint32_t first, std::size_t count) {
+FillVector<std::uint32_t> neighbour_components(const GridTriangles& grid, std::uint32_t first, std::size_t count) {
   return components(grid, first, count, [](std::size_t) { return true; });
 }
 
@@ -211,12 +211,12 @@ SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint
   FillVector<std::uint32_t> reps;
   const auto member = [&](std::size_t i) { return members[i]; };
   if (consecutive) {  // the operand's range of ids alone
-    const std::vector<std::uint32_t> component = neighbour_components(grid, members.front(), members.size());
+    const FillVector<std::uint32_t> component = neighbour_components(grid, members.front(), members.size());
     reps = parallel_select<std::uint32_t>(members.size(), [&](std::size_t i) { return component[i] == members[i]; }, member);
   } else {
     std::vector<char> keep(grid.neighbors.size(), 0);
     for (const std::uint32_t m : members) keep[m] = 1;
-    const std::vector<std::uint32_t> component = neighbour_components(grid, keep);
+    const FillVector<std::uint32_t> component = neighbour_components(grid, keep);
     reps = parallel_select<std::uint32_t>(members.size(), [&](std::size_t i) { return component[members[i]] == members[i]; },
                                           member);
   }

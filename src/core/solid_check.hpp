@@ -66,11 +66,11 @@ struct GridTriangles {
 /// edges (GridTriangles::neighbors, both ends kept): per kept triangle the
 /// smallest id of its component (other entries unspecified). Shared by the
 /// proof's components and the solid path's untouched ones.
-std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, std::span<const char> keep);
+FillVector<std::uint32_t> neighbour_components(const GridTriangles& grid, std::span<const char> keep);
 /// The same for all triangles first .. first + count - 1 (an operand's range
 /// of ids) and the manifold edges between them: entry i is triangle first +
 /// i's. Linear in count, not in all triangles.
-std::vector<std::uint32_t> neighbour_components(const GridTriangles& grid, std::uint32_t first, std::size_t count);
+FillVector<std::uint32_t> neighbour_components(const GridTriangles& grid, std::uint32_t first, std::size_t count);
 
 /// The verdict and, for the user, how much evidence was found against it.
 struct SolidFinding {

@@ -347,7 +347,7 @@ OutputPolygon output_of(const GridTriangles& grid, std::uint32_t id, std::uint32
 /// component's index in `roots`.
 struct Components {
   FillVector<std::uint32_t> roots;
-  std::vector<std::uint32_t> index;
+  FillVector<std::uint32_t> index;
 };
 
 /// Per triangle, whether another operand's triangle meets it (in parallel:

@@ -100,8 +100,9 @@ class TriangleTree {
   /// fill(block, s, item) (item: the triangle in that slot, or kNoItem for
   /// the empty slots of the last leaf).
   static constexpr std::uint32_t kNoItem = UINT32_MAX;
-  template <typename Block, typename Fill>
-  void fill_leaf_blocks(std::vector<Block>& blocks, Fill&& fill) const {
+  /// (A FillVector's blocks are first touched there, in parallel.)
+  template <typename Block, typename Alloc, typename Fill>
+  void fill_leaf_blocks(std::vector<Block, Alloc>& blocks, Fill&& fill) const {
     blocks.resize((size() + kLeaf - 1) / kLeaf);
     tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t k) {
       for (std::size_t s = 0; s < kLeaf; ++s) fill(blocks[k], s, k * kLeaf + s < size() ? item(k * kLeaf + s) : kNoItem);

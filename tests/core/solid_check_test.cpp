@@ -467,7 +467,7 @@ TEST(NeighbourComponents, MatchTheSerialAnswerAtAnyThreadCount) {
               in_range.begin() + static_cast<std::ptrdiff_t>(first + count), 1);
     const std::vector<std::uint32_t> expected_range = components_by_search(in_range);
     for (const int threads : {1, 2, 4, 8}) {
-      std::vector<std::uint32_t> got, got_range;
+      core::FillVector<std::uint32_t> got, got_range;
       tbb::task_arena(threads).execute([&] {
         got = core::neighbour_components(grid, keep);
         got_range = core::neighbour_components(grid, static_cast<std::uint32_t>(first), count);
