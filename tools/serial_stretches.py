@@ -23,8 +23,10 @@ import subprocess
 import sys
 import tempfile
 
-PARALLEL = re.compile(r"tbb::detail::d1::(start_for|start_reduce|start_scan|start_deterministic_reduce|"
-                      r"function_invoker|function_task|sum_node|final_sum)|parallel_scan<")
+# The bodies of oneTBB's loops, reductions, scans, task groups and parallel_invoke branches
+# (namespace d1 in oneTBB 2021; any dN, should a later version move them).
+PARALLEL = re.compile(r"tbb::detail::d\d+::(start_for|start_reduce|start_scan|start_deterministic_reduce|"
+                      r"function_invoker|function_task|function_stack_task|sum_node|final_sum)|parallel_scan<")
 # At one thread the components' flood fill (serial_components, often unwound as its caller
 # components<...>) is the chosen algorithm, not a stretch the other threads wait through.
 ONE_THREAD_ONLY = re.compile(r"serial_components|::components<")
@@ -70,10 +72,13 @@ def main():
         where[" < ".join(s[:60] for s in named[:4])] += 1
     if total == 0:
         sys.exit("no samples inside ember::boolean (is perf allowed to profile? is the build's debug info there?)")
-    counted = total - one_thread_only
+    counted = max(1, total - one_thread_only)
     s = serial / counted
+    # Only the calling thread's stacks reach ember::boolean: at one thread its samples are all
+    # the work; at more, the share is of the calling thread's time (the workers' is left out).
+    of_what = "of the work" if args.threads == 1 else "of the calling thread's samples"
     print(f"{args.threads} thread(s), {args.runs} run(s): {total} samples inside ember::boolean")
-    print(f"  serial (no parallel construct on the stack): {serial} ({100 * s:.2f}% of the work"
+    print(f"  serial (no parallel construct on the stack): {serial} ({100 * s:.2f}% {of_what},"
           f" not counting the one-thread-only flood fill's {one_thread_only})")
     if args.threads == 1:
         for p in (2, 4, 8, 16):

@@ -14,6 +14,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/fill_vector.hpp"
 #include "core/solid_check.hpp"
 #include "core/triangle_tree.hpp"
 #include "core/wide_lanes.hpp"

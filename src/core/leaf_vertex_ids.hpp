@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "core/fill_vector.hpp"
 #include "core/solid_check.hpp"
 #include "core/triangle_tree.hpp"
 

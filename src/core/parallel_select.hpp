@@ -21,12 +21,16 @@
 
 namespace ember::core {
 
+/// Indices per block of parallel_select (its tests straddle the boundaries).
+inline constexpr std::size_t kSelectBlock = 4096;
+
 /// make(i) for every i in [0, n) with keep(i), in order of i. keep is
-/// called twice per index and must give the same answer both times; both
-/// run concurrently for different indices.
+/// called twice per index and must give the same answer both times; make
+/// is called once per kept index and never for another. Both are called
+/// from several threads at once, for different indices.
 template <typename T, typename Keep, typename Make>
 FillVector<T> parallel_select(std::size_t n, const Keep& keep, const Make& make) {
-  constexpr std::size_t kBlock = 4096;
+  constexpr std::size_t kBlock = kSelectBlock;
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   std::vector<std::size_t> at(blocks + 1, 0);
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {

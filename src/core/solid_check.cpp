@@ -10,11 +10,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cassert>
-#include <numeric>
 
 #include "core/contact_search.hpp"
-#include "core/parallel_select.hpp"
 #include "core/operand_trees.hpp"
+#include "core/parallel_select.hpp"
 #include "core/root_problem.hpp"
 #include "core/solid_trace.hpp"
 #include "core/vertex_stars.hpp"

@@ -14,7 +14,6 @@
 #include <atomic>
 #include <bit>
 #include <cassert>
-#include <numeric>
 #include <optional>
 
 #include "core/frame_sample.hpp"

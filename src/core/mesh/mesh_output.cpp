@@ -15,8 +15,8 @@
 #include <optional>
 
 #include "core/fill_vector.hpp"
-#include "core/parallel_select.hpp"
 #include "core/mesh/vertex_index.hpp"
+#include "core/parallel_select.hpp"
 
 namespace ember::core {
 
