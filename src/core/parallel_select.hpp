@@ -9,6 +9,7 @@
 // write at the block's offset), so the result does not depend on the
 // schedule, and the output's pages are first touched in parallel
 // (FillVector).
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
