@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "ember/geometry.hpp"
+#include "geometry/geometry.hpp"
 
 namespace {
 

@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "ember/numbers/int.hpp"
-#include "ember/numbers/ratio.hpp"
+#include "numbers/int.hpp"
+#include "numbers/ratio.hpp"
 
 namespace {
 

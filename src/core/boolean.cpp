@@ -18,17 +18,17 @@
 #include <string>
 #include <unordered_map>
 
-#include "core/direct_mesh.hpp"
-#include "core/grid_input.hpp"
-#include "core/input_soup.hpp"
-#include "core/root_problem.hpp"
-#include "core/indicator.hpp"
-#include "core/mesh/mesh_output.hpp"
-#include "core/solve.hpp"
-#include "core/solid_check.hpp"
-#include "core/solid_path.hpp"
-#include "core/whole_triangles.hpp"
-#include "ember/core/quantize.hpp"
+#include "core/route/direct/direct_mesh.hpp"
+#include "core/input/grid_input.hpp"
+#include "core/input/input_triangles.hpp"
+#include "core/route/general/root_problem.hpp"
+#include "core/model/indicator.hpp"
+#include "core/output/mesh_output.hpp"
+#include "core/route/general/solve.hpp"
+#include "core/proof/solid_proof.hpp"
+#include "core/route/solid/solid_route.hpp"
+#include "core/route/general/whole_triangles.hpp"
+#include "core/input/quantize.hpp"
 #include "ember/error.hpp"
 
 namespace ember {
@@ -344,7 +344,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
     result.stats.proof_ms = ms_between(setup_done, proved);
     report(options, "solve", 0.2);
     arena.execute([&] {
-      // All operands solid: the solid path (solid_path.hpp) needs no
+      // All operands solid: the solid path (solid_route.hpp) needs no
       // subdivision. It declines only where every trace it tried met
       // something degenerately; the subdivision then solves as always.
       const bool all_solid = std::all_of(ctx.solid.begin(), ctx.solid.end(), [](char s) { return s != 0; });

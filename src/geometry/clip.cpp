@@ -1,5 +1,5 @@
 // Convex polygon clipping (paper Section 4.2.1, Fig. 6).
-#include "ember/geometry/clip.hpp"
+#include "geometry/clip.hpp"
 
 #include <array>
 #include <vector>

@@ -1,5 +1,5 @@
 // Line / segment versus convex polygon (paper Section 3.1).
-#include "ember/geometry/intersect.hpp"
+#include "geometry/intersect.hpp"
 
 namespace ember {
 namespace {

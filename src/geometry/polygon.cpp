@@ -1,5 +1,5 @@
 // Construction of plane-based convex polygons from grid points.
-#include "ember/geometry/polygon.hpp"
+#include "geometry/polygon.hpp"
 
 namespace ember {
 

@@ -12,8 +12,8 @@
 #include <optional>
 #include <random>
 
-#include "core/chords.hpp"
-#include "core/trace.hpp"
+#include "core/route/shared/chords.hpp"
+#include "core/route/shared/trace.hpp"
 
 namespace ember::test {
 namespace {

@@ -11,9 +11,9 @@
 #include <optional>
 #include <random>
 
-#include "core/contact_search.hpp"
-#include "core/leaf_frame_extents.hpp"
-#include "core/solid_check.hpp"
+#include "core/proof/contact_search.hpp"
+#include "core/search/leaf_frame_extents.hpp"
+#include "core/proof/solid_proof.hpp"
 #include "contact_test_util.hpp"
 #include "core_test_util.hpp"
 

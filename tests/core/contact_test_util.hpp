@@ -8,7 +8,7 @@
 #include <tuple>
 #include <vector>
 
-#include "core/solid_check.hpp"
+#include "core/proof/solid_proof.hpp"
 
 namespace ember::test {
 

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "contact_test_util.hpp"
-#include "core/direct_faces.hpp"
+#include "core/route/direct/direct_faces.hpp"
 #include "geometry/oracle.hpp"
 #include "support/int_gmp.hpp"
 

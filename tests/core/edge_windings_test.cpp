@@ -11,10 +11,10 @@
 #include <random>
 #include <vector>
 
-#include "core/indicator.hpp"
-#include "core/edge_windings.hpp"
-#include "core/solve.hpp"
-#include "ember/geometry/exact_order.hpp"
+#include "core/model/indicator.hpp"
+#include "core/route/shared/edge_windings.hpp"
+#include "core/route/general/solve.hpp"
+#include "geometry/exact_order.hpp"
 #include "support/shapes.hpp"
 
 namespace ember::core {

@@ -8,10 +8,10 @@
 #include <random>
 #include <vector>
 
-#include "core/mesh/mesh_output.hpp"
-#include "ember/geometry/clip.hpp"
-#include "ember/geometry/exact_order.hpp"
-#include "ember/geometry/polygon.hpp"
+#include "core/output/mesh_output.hpp"
+#include "geometry/clip.hpp"
+#include "geometry/exact_order.hpp"
+#include "geometry/polygon.hpp"
 
 namespace ember::core {
 namespace {

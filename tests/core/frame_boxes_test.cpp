@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "core/frame_boxes.hpp"
+#include "core/route/general/frame_boxes.hpp"
 
 namespace ember::core {
 namespace {

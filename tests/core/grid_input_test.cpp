@@ -13,7 +13,7 @@
 #include <random>
 #include <tuple>
 
-#include "core/grid_input.hpp"
+#include "core/input/grid_input.hpp"
 
 namespace ember::core {
 namespace {

@@ -13,8 +13,8 @@
 #include <random>
 #include <vector>
 
-#include "core/leaf_diagonals.hpp"
-#include "core/leaf_frame_extents.hpp"
+#include "core/search/leaf_diagonals.hpp"
+#include "core/search/leaf_frame_extents.hpp"
 
 namespace ember::test {
 namespace {

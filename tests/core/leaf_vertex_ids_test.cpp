@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "core/leaf_vertex_ids.hpp"
+#include "core/search/leaf_vertex_ids.hpp"
 
 namespace ember::test {
 namespace {

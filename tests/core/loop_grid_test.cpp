@@ -1,6 +1,6 @@
 // LoopGrid (src/core/mesh/loop_grid.hpp): the ear clipper's grid offers
 // every point still in it that lies in a queried box, and no removed one.
-#include "core/mesh/loop_grid.hpp"
+#include "core/output/loop_grid.hpp"
 
 #include <gtest/gtest.h>
 

@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-#include "core/parallel_select.hpp"
+#include "core/support/parallel_select.hpp"
 
 namespace ember::test {
 namespace {

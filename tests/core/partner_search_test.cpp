@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "contact_test_util.hpp"
-#include "core/leaf_frame_extents.hpp"
-#include "core/operand_trees.hpp"
-#include "core/solid_path.hpp"
+#include "core/search/leaf_frame_extents.hpp"
+#include "core/search/operand_trees.hpp"
+#include "core/route/solid/solid_route.hpp"
 
 namespace ember::test {
 namespace {

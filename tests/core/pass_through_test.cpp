@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/mesh/mesh_output.hpp"
-#include "core/mesh/vertex_index.hpp"
+#include "core/output/mesh_output.hpp"
+#include "core/output/vertex_index.hpp"
 
 namespace ember::core {
 namespace {

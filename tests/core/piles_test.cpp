@@ -6,7 +6,7 @@
 #include <cmath>
 #include <optional>
 
-#include "core/solve.hpp"
+#include "core/route/general/solve.hpp"
 #include "core_test_util.hpp"
 
 namespace ember::test {

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "core/principal_frame.hpp"
+#include "core/support/principal_frame.hpp"
 
 namespace ember::test {
 namespace {

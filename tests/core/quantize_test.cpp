@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "core/direct_faces.hpp"
-#include "ember/core/quantize.hpp"
+#include "core/route/direct/direct_faces.hpp"
+#include "core/input/quantize.hpp"
 #include "ember/error.hpp"
 #include "support/correct_rounding.hpp"
 #include "support/int_gmp.hpp"

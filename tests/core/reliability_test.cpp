@@ -4,8 +4,8 @@
 #include <string>
 
 #include "core/core_test_util.hpp"
-#include "core/triangulate.hpp"
-#include "ember/core/quantize.hpp"
+#include "core/input/face_triangulation.hpp"
+#include "core/input/quantize.hpp"
 
 namespace ember::test {
 namespace {

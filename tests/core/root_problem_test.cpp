@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "core/root_problem.hpp"
-#include "core/solid_check.hpp"
+#include "core/route/general/root_problem.hpp"
+#include "core/proof/solid_proof.hpp"
 
 namespace ember::core {
 namespace {

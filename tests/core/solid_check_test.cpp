@@ -9,7 +9,7 @@
 #include <functional>
 #include <random>
 
-#include "core/solid_check.hpp"
+#include "core/proof/solid_proof.hpp"
 #include "core_test_util.hpp"
 
 namespace ember::test {
@@ -357,7 +357,7 @@ TEST(TriangleContact, MeetFromFilteredSignsMatchesRationalOracle) {
 TEST(TriangleContact, RandomFullRangeTrianglesMatchRationalOracle) {
   // The same lattice stretched over the whole grid, -2^25 .. 2^25 - 1: corner
   // differences near 2^26 and normal components near 2^53, the limits of the
-  // int64 normal and the 128-bit side test (tri_contact.cpp's bit budget).
+  // int64 normal and the 128-bit side test (triangle_contact.cpp's bit budget).
   constexpr std::int64_t lo = -kCoordLimit, step = (2 * kCoordLimit - 1) / 3;
   static_assert(lo + 3 * step <= kCoordLimit && step > (std::int64_t{1} << 24));
   expect_random_lattice_pairs_match_oracle(lo, step);

@@ -4,7 +4,7 @@
 // until it passes kKeep.
 #include <gtest/gtest.h>
 
-#include "core/solid_cuts.hpp"
+#include "core/route/solid/solid_cuts.hpp"
 
 namespace ember::core {
 namespace {

@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "core/solid_trace.hpp"
-#include "core/triangle_tree.hpp"
+#include "core/route/solid/solid_trace.hpp"
+#include "core/search/triangle_tree.hpp"
 
 namespace ember::core {
 namespace {

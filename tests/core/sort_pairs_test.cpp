@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <random>
 
-#include "core/sort_pairs.hpp"
+#include "core/support/sort_pairs.hpp"
 
 namespace ember::test {
 namespace {

@@ -11,9 +11,9 @@
 #include <optional>
 #include <random>
 
-#include "core/soup.hpp"
-#include "core/whole_triangles.hpp"
-#include "ember/geometry/clip.hpp"
+#include "core/model/soup.hpp"
+#include "core/route/general/whole_triangles.hpp"
+#include "geometry/clip.hpp"
 
 namespace ember::core {
 namespace {

@@ -8,12 +8,12 @@
 #include <gtest/gtest.h>
 
 #include "core/core_test_util.hpp"
-#include "core/grid_input.hpp"
-#include "core/input_soup.hpp"
-#include "core/mesh/mesh_output.hpp"
-#include "core/mesh/vertex_index.hpp"
-#include "ember/geometry/clip.hpp"
-#include "ember/geometry/polygon.hpp"
+#include "core/input/grid_input.hpp"
+#include "core/input/input_triangles.hpp"
+#include "core/output/mesh_output.hpp"
+#include "core/output/vertex_index.hpp"
+#include "geometry/clip.hpp"
+#include "geometry/polygon.hpp"
 
 namespace ember::test {
 namespace {

@@ -7,8 +7,8 @@
 #include <random>
 #include <vector>
 
-#include "core/solve.hpp"
-#include "core/trace.hpp"
+#include "core/route/general/solve.hpp"
+#include "core/route/shared/trace.hpp"
 
 namespace ember::core {
 namespace {

@@ -16,7 +16,7 @@
 #include <random>
 #include <vector>
 
-#include "core/triangle_tree.hpp"
+#include "core/search/triangle_tree.hpp"
 
 namespace ember::test {
 namespace {

@@ -10,10 +10,10 @@
 #include <random>
 #include <span>
 
-#include "core/mesh/vertex_index.hpp"
-#include "ember/core/quantize.hpp"
-#include "ember/geometry/plane.hpp"
-#include "ember/geometry/point.hpp"
+#include "core/output/vertex_index.hpp"
+#include "core/input/quantize.hpp"
+#include "geometry/plane.hpp"
+#include "geometry/point.hpp"
 
 namespace ember::core {
 namespace {

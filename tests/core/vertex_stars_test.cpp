@@ -12,8 +12,8 @@
 #include <random>
 
 #include "contact_test_util.hpp"
-#include "core/contact_search.hpp"
-#include "core/vertex_stars.hpp"
+#include "core/proof/contact_search.hpp"
+#include "core/proof/vertex_stars.hpp"
 #include "support/shapes.hpp"
 
 namespace ember::test {

@@ -1,4 +1,4 @@
-// for_each_edge (core/weld.hpp): every undirected edge once, with all of its
+// for_each_edge (edge_matching.hpp): every undirected edge once, with all of its
 // uses in a fixed order, whatever the thread count; checked against a
 // brute-force grouping on inputs that span several blocks and buckets of
 // its two-level counting sort.
@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/weld.hpp"
+#include "core/input/edge_matching.hpp"
 
 namespace ember::core {
 namespace {

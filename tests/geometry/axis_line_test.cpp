@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "ember/geometry.hpp"
+#include "geometry/geometry.hpp"
 
 namespace ember::test {
 namespace {

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "ember/geometry/exact_order.hpp"
+#include "geometry/exact_order.hpp"
 #include "oracle.hpp"
 
 namespace ember::test {

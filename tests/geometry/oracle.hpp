@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <random>
 
-#include "ember/geometry.hpp"
+#include "geometry/geometry.hpp"
 #include "support/int_gmp.hpp"
 
 namespace ember::test {

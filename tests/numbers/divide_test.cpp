@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "ember/numbers/divide.hpp"
+#include "numbers/divide.hpp"
 
 namespace ember::test {
 namespace {

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "ember/numbers/int.hpp"
+#include "numbers/int.hpp"
 #include "support/int_gmp.hpp"
 
 namespace ember::test {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "ember/numbers/ratio.hpp"
+#include "numbers/ratio.hpp"
 #include "numbers/oracle.hpp"
 #include "support/correct_rounding.hpp"
 

@@ -7,7 +7,7 @@
 #include <array>
 #include <cstdint>
 
-#include "ember/numbers/int.hpp"
+#include "numbers/int.hpp"
 
 namespace ember::test {
 
