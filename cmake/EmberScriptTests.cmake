@@ -25,3 +25,13 @@ if(EMBER_BUILD_TESTS)
     set_tests_properties(cli.progress_tty PROPERTIES TIMEOUT 300)
   endif()
 endif()
+
+# The include structure (tools/check_includes.py): no include cycles, every
+# source starts with its own header, installed headers include nothing from src/.
+if(EMBER_BUILD_TESTS)
+  find_package(Python3 COMPONENTS Interpreter QUIET)
+  if(Python3_Interpreter_FOUND)
+    add_test(NAME layout.include_structure COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/tools/check_includes.py
+                                                   ${CMAKE_SOURCE_DIR})
+  endif()
+endif()

@@ -13,7 +13,10 @@
 
 #include "core/proof/contact_search.hpp"
 #include "core/search/leaf_frame_extents.hpp"
-#include "core/proof/solid_proof.hpp"
+#include "core/search/contact_triangle.hpp"
+#include "core/search/extents.hpp"
+#include "core/search/triangle_contact.hpp"
+#include "core/search/triangle_tree.hpp"
 #include "contact_test_util.hpp"
 #include "core_test_util.hpp"
 

@@ -8,7 +8,9 @@
 #include <tuple>
 #include <vector>
 
-#include "core/proof/solid_proof.hpp"
+#include "core/model/grid_triangles.hpp"
+#include "core/search/contact_triangle.hpp"
+#include "core/search/triangle_contact.hpp"
 
 namespace ember::test {
 

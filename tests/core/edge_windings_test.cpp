@@ -13,7 +13,10 @@
 
 #include "core/model/indicator.hpp"
 #include "core/route/shared/edge_windings.hpp"
-#include "core/route/general/solve.hpp"
+#include "core/model/output_polygon.hpp"
+#include "core/model/solve_context.hpp"
+#include "core/route/general/subproblem.hpp"
+#include "core/route/general/leaf.hpp"
 #include "geometry/exact_order.hpp"
 #include "support/shapes.hpp"
 

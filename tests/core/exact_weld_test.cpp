@@ -8,7 +8,8 @@
 #include <random>
 #include <vector>
 
-#include "core/output/mesh_output.hpp"
+#include "core/output/output_vertices.hpp"
+#include "core/output/exact_weld.hpp"
 #include "geometry/clip.hpp"
 #include "geometry/exact_order.hpp"
 #include "geometry/polygon.hpp"

@@ -11,7 +11,11 @@
 #include <random>
 #include <vector>
 
-#include "core/output/mesh_output.hpp"
+#include "core/output/output_vertices.hpp"
+#include "core/output/regions.hpp"
+#include "core/output/collinear.hpp"
+#include "core/output/region_triangulation.hpp"
+#include "core/output/diagonals.hpp"
 #include "core/output/vertex_index.hpp"
 
 namespace ember::core {

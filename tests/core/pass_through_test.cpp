@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/output/mesh_output.hpp"
+#include "core/output/output_vertices.hpp"
+#include "core/output/exact_weld.hpp"
+#include "core/output/tjunctions.hpp"
+#include "core/output/pass_through.hpp"
 #include "core/output/vertex_index.hpp"
 
 namespace ember::core {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <optional>
 
-#include "core/route/general/solve.hpp"
+#include "core/route/general/subdivide.hpp"
 #include "core_test_util.hpp"
 
 namespace ember::test {

@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "core/route/general/root_problem.hpp"
-#include "core/proof/solid_proof.hpp"
+#include "core/model/grid_triangles.hpp"
+#include "core/model/output_polygon.hpp"
+#include "core/route/general/subproblem.hpp"
 
 namespace ember::core {
 namespace {

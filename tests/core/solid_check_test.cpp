@@ -9,7 +9,10 @@
 #include <functional>
 #include <random>
 
-#include "core/proof/solid_proof.hpp"
+#include "core/model/grid_triangles.hpp"
+#include "core/model/components.hpp"
+#include "core/search/triangle_contact.hpp"
+#include "core/support/fill_vector.hpp"
 #include "core_test_util.hpp"
 
 namespace ember::test {

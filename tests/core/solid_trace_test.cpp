@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "core/route/general/leaf.hpp"
 #include "core/route/solid/solid_trace.hpp"
 #include "core/search/triangle_tree.hpp"
 

@@ -7,7 +7,8 @@
 #include <random>
 #include <vector>
 
-#include "core/route/general/solve.hpp"
+#include "core/route/general/subproblem.hpp"
+#include "core/route/general/leaf.hpp"
 #include "core/route/shared/trace.hpp"
 
 namespace ember::core {

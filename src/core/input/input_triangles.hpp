@@ -8,7 +8,8 @@
 
 #include "core/input/grid_input.hpp"
 #include "core/model/soup.hpp"
-#include "core/proof/solid_proof.hpp"
+#include "core/model/grid_triangles.hpp"
+#include "core/support/fill_vector.hpp"
 #include "ember/mesh.hpp"
 
 namespace ember::core {

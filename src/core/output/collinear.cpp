@@ -7,9 +7,11 @@
 // regions and is not a corner of either. Removing it on both sides keeps the
 // two loops matched edge for edge (a->b against b->a). The test reads only
 // ids and the regions' planes: no geometry is computed.
+#include "core/output/collinear.hpp"
+
 #include <algorithm>
 
-#include "core/output/mesh_output.hpp"
+#include "core/output/regions.hpp"
 
 namespace ember::core {
 

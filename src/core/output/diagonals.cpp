@@ -9,10 +9,13 @@
 // diagonal and both triangles on it are split in two, so no vertex lies inside
 // an output edge. Triangles of positive area stay positive: the new corner is
 // strictly inside the old edge and the opposite corner is off its line.
+#include "core/output/diagonals.hpp"
+
 #include <algorithm>
 #include <utility>
 
-#include "core/output/mesh_output.hpp"
+#include "core/output/output_vertices.hpp"
+#include "core/output/regions.hpp"
 #include "core/output/vertex_index.hpp"
 #include "geometry/exact_order.hpp"
 

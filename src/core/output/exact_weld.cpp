@@ -22,6 +22,8 @@
 //
 // The sort is a radix sort of (32-bit hash, item) pairs (sort_pairs): a
 // comparison sort of the positions cost ~17 compare-and-move steps per item.
+#include "core/output/exact_weld.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -31,7 +33,7 @@
 #include <optional>
 
 #include "core/support/fill_vector.hpp"
-#include "core/output/mesh_output.hpp"
+#include "core/output/output_vertices.hpp"
 #include "core/support/sort_pairs.hpp"
 #include "geometry/exact_order.hpp"
 

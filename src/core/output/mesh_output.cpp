@@ -1,6 +1,14 @@
 // The mesh stage's driver: exact weld, T-junction insertion, region merge,
 // collinear-vertex removal, triangulation, then one indexed triangle mesh.
 #include "core/output/mesh_output.hpp"
+#include "core/output/output_vertices.hpp"
+#include "core/output/exact_weld.hpp"
+#include "core/output/tjunctions.hpp"
+#include "core/output/pass_through.hpp"
+#include "core/output/regions.hpp"
+#include "core/output/collinear.hpp"
+#include "core/output/region_triangulation.hpp"
+#include "core/output/diagonals.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -11,12 +11,15 @@
 // those pairs as an edge lies in a different oriented plane. Two pieces with
 // a common edge share a point, so their planes are equal iff their normals
 // are parallel, and equally oriented iff the normals point the same way.
+#include "core/output/pass_through.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 
-#include "core/output/mesh_output.hpp"
+#include "core/output/output_vertices.hpp"
+#include "core/output/tjunctions.hpp"
 #include "core/support/sort_pairs.hpp"
 
 namespace ember::core {

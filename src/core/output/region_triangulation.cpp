@@ -5,6 +5,8 @@
 // area and no other vertex lies in its closed triangle, so no zero-area
 // triangle is ever produced. Anything unexpected answers false and the caller
 // falls back to triangulating the region's pieces one by one.
+#include "core/output/region_triangulation.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,7 +15,8 @@
 #include <type_traits>
 
 #include "core/output/loop_grid.hpp"
-#include "core/output/mesh_output.hpp"
+#include "core/output/output_vertices.hpp"
+#include "core/output/regions.hpp"
 #include "geometry/exact_order.hpp"
 
 namespace ember::core {

@@ -6,6 +6,8 @@
 // edges, opposite to each other: such edges are interior and cancel. What
 // remains around a group of pieces joined that way is the boundary of the
 // merged region (outer loop and holes), with the region on the left.
+#include "core/output/regions.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -15,7 +17,7 @@
 #include <tuple>
 
 #include "core/support/fill_vector.hpp"
-#include "core/output/mesh_output.hpp"
+#include "core/output/output_vertices.hpp"
 #include "geometry/exact_order.hpp"
 
 namespace ember::core {

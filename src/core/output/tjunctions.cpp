@@ -17,6 +17,8 @@
 // ones that are plainly off the line; the rest are tested exactly: on the
 // support plane, collinear with the edge's end points in the plane's
 // projection, and strictly between them.
+#include "core/output/tjunctions.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -24,7 +26,7 @@
 #include <atomic>
 #include <cmath>
 
-#include "core/output/mesh_output.hpp"
+#include "core/output/output_vertices.hpp"
 #include "core/output/vertex_index.hpp"
 #include "core/support/sort_pairs.hpp"
 #include "geometry/exact_order.hpp"

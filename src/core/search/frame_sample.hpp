@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/search/leaf_frame_extents.hpp"
-#include "core/proof/solid_proof.hpp"
+#include "core/search/extents.hpp"
 #include "core/search/triangle_tree.hpp"
 
 namespace ember::core {

@@ -8,6 +8,7 @@
 #include <limits>
 #include <span>
 
+#include "core/search/contact_triangle.hpp"
 #include "core/search/leaf_extents.hpp"
 
 namespace ember::core {

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "core/support/fill_vector.hpp"
-#include "core/proof/solid_proof.hpp"
+#include "core/search/extents.hpp"
 #include "core/search/triangle_tree.hpp"
 #include "core/support/wide_lanes.hpp"
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/support/fill_vector.hpp"
-#include "core/proof/solid_proof.hpp"
+#include "core/search/contact_triangle.hpp"
 #include "core/search/triangle_tree.hpp"
 
 namespace ember::core {

@@ -6,7 +6,7 @@
 #include <cassert>
 #include <cstdint>
 
-#include "core/proof/solid_proof.hpp"
+#include "core/search/triangle_contact.hpp"
 
 namespace ember::core {
 

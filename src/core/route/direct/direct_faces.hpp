@@ -9,10 +9,11 @@
 #include <span>
 #include <vector>
 
-#include "core/output/mesh_output.hpp"
+#include "core/output/output_vertices.hpp"
+#include "core/output/region_triangulation.hpp"
 #include "core/model/soup.hpp"
-#include "core/proof/solid_proof.hpp"
-#include "core/route/general/solve.hpp"
+#include "core/model/grid_triangles.hpp"
+#include "core/model/solve_context.hpp"
 
 namespace ember::core {
 

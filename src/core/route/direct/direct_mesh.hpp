@@ -44,6 +44,7 @@
 #include <optional>
 #include <span>
 
+#include "core/output/output_vertices.hpp"
 #include "core/output/mesh_output.hpp"
 #include "core/route/solid/solid_route.hpp"
 

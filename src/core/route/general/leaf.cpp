@@ -1,6 +1,8 @@
 // Leaf computation (paper Sections 4.3 and 4.4): every polygon is cut by all
 // others with a polygon-local BSP, then each enabled piece is classified by
 // tracing a path from the leaf's reference point to an interior point.
+#include "core/route/general/leaf.hpp"
+
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -14,7 +16,10 @@
 #include "core/route/shared/edge_windings.hpp"
 #include "core/route/general/frame_boxes.hpp"
 #include "core/route/shared/pieces.hpp"
-#include "core/route/general/solve.hpp"
+#include "core/model/output_polygon.hpp"
+#include "core/model/solve_context.hpp"
+#include "core/route/general/subproblem.hpp"
+#include "core/route/general/subdivide.hpp"
 #include "core/route/shared/trace.hpp"
 #include "ember/error.hpp"
 

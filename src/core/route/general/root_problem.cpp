@@ -6,7 +6,8 @@
 #include <tbb/task_arena.h>
 
 #include "core/support/fill_vector.hpp"
-#include "core/proof/solid_proof.hpp"
+#include "core/model/grid_triangles.hpp"
+#include "core/route/general/subproblem.hpp"
 
 namespace ember::core {
 

@@ -13,7 +13,7 @@
 #include <span>
 #include <vector>
 
-#include "core/route/general/solve.hpp"
+#include "core/route/general/subproblem.hpp"
 
 namespace ember::core {
 

@@ -1,6 +1,8 @@
 // Adaptive subdivision (paper Section 4.2): split the box at an integer
 // position, clip every polygon into the children and carry a reference point
 // with a known winding-number vector into each child.
+#include "core/route/general/subdivide.hpp"
+
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
@@ -8,7 +10,10 @@
 #include <cmath>
 #include <iterator>
 
-#include "core/route/general/solve.hpp"
+#include "core/model/output_polygon.hpp"
+#include "core/model/solve_context.hpp"
+#include "core/route/general/subproblem.hpp"
+#include "core/route/general/leaf.hpp"
 #include "core/route/shared/trace.hpp"
 #include "ember/error.hpp"
 

@@ -4,7 +4,8 @@
 #include <span>
 #include <vector>
 
-#include "core/route/general/solve.hpp"
+#include "core/model/output_polygon.hpp"
+#include "core/route/general/subproblem.hpp"
 
 namespace ember::core {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/route/shared/pieces.hpp"
-#include "core/proof/solid_proof.hpp"
+#include "core/model/grid_triangles.hpp"
 
 namespace ember::core {
 

@@ -21,7 +21,8 @@
 
 #include "core/route/shared/pieces.hpp"
 #include "core/model/soup.hpp"
-#include "core/proof/solid_proof.hpp"
+#include "core/model/grid_triangles.hpp"
+#include "core/model/soup.hpp"
 
 namespace ember::core {
 

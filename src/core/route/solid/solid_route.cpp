@@ -2,6 +2,8 @@
 // trees, polygon-local BSPs of the touched triangles, classification by
 // traces from outside, untouched triangles by components.
 #include "core/route/solid/solid_route.hpp"
+#include "core/model/components.hpp"
+#include "core/search/triangle_contact.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>

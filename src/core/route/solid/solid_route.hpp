@@ -42,8 +42,11 @@
 
 #include "core/search/operand_trees.hpp"
 #include "core/support/principal_frame.hpp"
-#include "core/proof/solid_proof.hpp"
-#include "core/route/general/solve.hpp"
+#include "core/model/grid_triangles.hpp"
+#include "core/search/triangle_tree.hpp"
+#include "core/support/fill_vector.hpp"
+#include "core/model/output_polygon.hpp"
+#include "core/model/solve_context.hpp"
 
 namespace ember::core {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/search/operand_trees.hpp"
-#include "core/route/general/solve.hpp"
+#include "core/model/soup.hpp"
 
 namespace ember::core {
 

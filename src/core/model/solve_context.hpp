@@ -1,0 +1,42 @@
+#pragma once
+// What every route is told about the Boolean: the indicator and what is known of the operands.
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "core/model/indicator.hpp"
+#include "core/model/soup.hpp"
+
+namespace ember::core {
+
+struct SolveContext {
+  std::size_t operands = 0;
+  std::function<bool(const Wnv&)> inside;  ///< indicator: WNV -> inside the result
+  /// The built-in operation behind `inside` (empty for a custom indicator).
+  /// Every built-in operation depends only on "inside operand i" flags
+  /// (w_i != 0); knowing which one lets early terminations decide exactly
+  /// whether unknown flags can change the result (`over_free`).
+  std::optional<Operation> op;
+  int min_k = 1;
+  /// Per operand: closed (every directed edge matched by an opposite one), so
+  /// its winding number changes only across its surface. Lets the leaf skip
+  /// cuts along coplanar polygons' edges (see docs/core.md).
+  std::vector<char> closed;
+  /// Per operand: solid (closed, outward, no self-intersections, no nested or
+  /// touching components: w in {0, 1}). Enables the shortcuts of Fig. 11.
+  std::vector<char> solid;
+  std::size_t leaf_size = 256;  ///< subdivide while a subproblem has more polygons (tuned: docs/core.md "Subdivision")
+  /// Leaves hand winding numbers across shared input edges instead of
+  /// tracing every piece (edge_windings.hpp). Off only in tests that compare
+  /// the two.
+  bool share_edge_windings = true;
+
+  /// inside_over_free for the built-in operation; -1 (may change) for a
+  /// custom indicator.
+  int over_free(std::size_t inside_count, std::size_t free, int first) const {
+    return op ? inside_over_free(*op, min_k, operands, inside_count, free, first) : -1;
+  }
+};
+
+}  // namespace ember::core
