@@ -15,7 +15,8 @@
 
 #include "core/search/leaf_diagonals.hpp"
 #include "core/support/principal_frame.hpp"
-#include "core/proof/solid_proof.hpp"
+#include "core/search/contact_triangle.hpp"
+#include "core/search/triangle_contact.hpp"
 #include "core/search/triangle_tree.hpp"
 
 namespace ember::core {

@@ -37,7 +37,8 @@
 // in __int128 (one 64 x 64 -> 128-bit product per term).
 #include <span>
 
-#include "core/proof/solid_proof.hpp"
+#include "core/model/grid_triangles.hpp"
+#include "core/search/contact_triangle.hpp"
 
 namespace ember::core {
 
