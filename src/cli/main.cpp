@@ -13,6 +13,7 @@
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -106,7 +107,9 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
     if (progress) options.progress = progress->callback();
     r = ember::boolean(operands.meshes, op, options);
   } catch (const ember::Error& e) {
-    throw ember::Error(name_operand(e.what(), operands.names));
+    const std::optional<std::size_t> o = e.operand();
+    if (o && *o < operands.names.size()) throw ember::Error(e.problem(), {.file = operands.names[*o]});
+    throw;
   }
   if (!a.quiet)
     for (const std::string& w : r.warnings)

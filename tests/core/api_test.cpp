@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <limits>
+#include <optional>
 
 #include "core/core_test_util.hpp"
 
@@ -77,6 +78,45 @@ Mesh open_box() {
   open.vertices = a.vertices;
   for (std::size_t f = 1; f < a.face_count(); ++f) open.add_face(a.face(f));  // drop one triangle
   return open;
+}
+
+// The error carries where the problem lies as fields, so that a caller that
+// names operands its own way (the CLI, by file) need not parse the message.
+TEST(BooleanApi, ErrorsCarryTheOperandFaceAndVertexAsFields) {
+  const Mesh a = box({0, 0, 0}, {1, 1, 1});
+  Mesh nan = a;
+  nan.vertices[3].y = std::numeric_limits<double>::quiet_NaN();
+  try {
+    boolean({a, nan}, Op::Union);
+    FAIL() << "a NaN coordinate must throw";
+  } catch (const Error& e) {
+    ASSERT_TRUE(e.operand().has_value());
+    EXPECT_EQ(*e.operand(), 1u);
+    ASSERT_TRUE(e.where().vertex.has_value());
+    EXPECT_EQ(*e.where().vertex, 3u);
+    EXPECT_EQ(e.problem().rfind("vertex 3 ", 0), 0u) << e.problem();
+    EXPECT_EQ(std::string(e.what()), "operand 1: " + e.problem());
+  }
+  Mesh bad = a;
+  bad.indices[5] = 8;  // face 1 (indices 3..5) uses a vertex past the end
+  try {
+    boolean({bad, a}, Op::Union);
+    FAIL() << "a bad index must throw";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.operand(), std::optional<std::size_t>(0));
+    EXPECT_EQ(e.where().face, std::optional<std::size_t>(5 / 3));
+  }
+  try {
+    boolean({a, open_box()}, Op::Union);
+    FAIL() << "an open operand must throw";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.operand(), std::optional<std::size_t>(1));
+    EXPECT_EQ(e.problem().rfind("not closed: ", 0), 0u) << e.problem();
+  }
+  const Error plain("no location");
+  EXPECT_FALSE(plain.operand().has_value());
+  EXPECT_EQ(plain.problem(), "no location");
+  EXPECT_EQ(Error("bad header", {.file = "a.obj"}).what(), std::string("a.obj: bad header"));
 }
 
 TEST(BooleanApi, OpenOperandThrowsByDefault) {

@@ -360,10 +360,11 @@ void audit_quantization(std::span<const Mesh> operands, const GridInput& grid, c
     // Most of the operand gone or inverted: the result would not be the
     // Boolean of the given shapes, so refuse rather than answer wrongly.
     if (2 * changed > with_area)
-      throw Error("operand " + std::to_string(o) + ": " + what +
+      throw Error(what +
                   "; most of the operand is lost on the grid, so the result would not be the Boolean of the given "
                   "shapes. It is thinner than the step or too small beside the other operands: remove far-away or "
-                  "huge geometry, or scale the operands to similar sizes");
+                  "huge geometry, or scale the operands to similar sizes",
+                  {.operand = o});
     warnings.push_back("operand " + std::to_string(o) + ": " + what + "; features finer than the step are lost");
   }
 }

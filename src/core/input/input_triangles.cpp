@@ -19,8 +19,6 @@ namespace ember::core {
 
 namespace {
 
-std::string operand_name(std::size_t i) { return "operand " + std::to_string(i); }
-
 /// What is wrong with face f, or nothing. Only for offsets already known to
 /// be non-decreasing (then every face's span lies inside `indices`).
 std::optional<std::string> face_problem(const Mesh& m, std::size_t f) {
@@ -81,19 +79,19 @@ void validate_operands(std::span<const Mesh> operands) {
   for (std::size_t o = 0; o < operands.size(); ++o) {
     const Mesh& m = operands[o];
     if (m.face_offsets.empty() || m.face_offsets.front() != 0 || m.face_offsets.back() != m.indices.size())
-      throw Error(operand_name(o) + ": face_offsets must start at 0 and end at indices.size()");
+      throw Error("face_offsets must start at 0 and end at indices.size()", {.operand = o});
     if (!faces_valid(m)) {  // find and name the first problem
       const std::size_t d =
           first_bad(m.face_count(), [&](std::size_t i) { return m.face_offsets[i + 1] < m.face_offsets[i]; });
       if (d < m.face_count())
-        throw Error(operand_name(o) + ": face_offsets must not decrease (face " + std::to_string(d) + ")");
+        throw Error("face_offsets must not decrease (face " + std::to_string(d) + ")", {.operand = o, .face = d});
       const std::size_t f = first_bad(m.face_count(), [&](std::size_t i) { return face_problem(m, i).has_value(); });
-      if (f < m.face_count()) throw Error(operand_name(o) + ": " + *face_problem(m, f));
+      if (f < m.face_count()) throw Error(*face_problem(m, f), {.operand = o, .face = f});
     }
     const std::size_t v = first_bad(m.vertices.size(), [&](std::size_t i) { return !finite(m.vertices[i]); });
     if (v < m.vertices.size())
-      throw Error(operand_name(o) + ": vertex " + std::to_string(v) +
-                  " has a non-finite coordinate (NaN or infinity); fix or remove it");
+      throw Error("vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or infinity); fix or remove it",
+                  {.operand = o, .vertex = v});
   }
 }
 

@@ -31,10 +31,10 @@ void check_closed(const std::vector<std::size_t>& open, bool allow_open, Prepare
     out.reports[o].open_edges = open[o];
     if (open[o] == 0) continue;
     out.reports[o].solid = SolidStatus::Open;
-    const std::string msg = operand_name(o) + ": not closed: " + std::to_string(open[o]) +
+    const std::string msg = "not closed: " + std::to_string(open[o]) +
                             " edges are not matched by an opposite edge, so inside/outside is undefined";
-    if (!allow_open) throw Error(msg + "; repair the mesh or allow open inputs (CLI: --allow-open)");
-    out.warnings.push_back(msg + "; proceeding as requested, the result may have holes");
+    if (!allow_open) throw Error(msg + "; repair the mesh or allow open inputs (CLI: --allow-open)", {.operand = o});
+    out.warnings.push_back(operand_name(o) + ": " + msg + "; proceeding as requested, the result may have holes");
   }
 }
 

@@ -21,12 +21,12 @@ struct SolveContext {
   int min_k = 1;
   /// Per operand: closed (every directed edge matched by an opposite one), so
   /// its winding number changes only across its surface. Lets the leaf skip
-  /// cuts along coplanar polygons' edges (see docs/core.md).
+  /// cuts along coplanar polygons' edges (see docs/design.md).
   std::vector<char> closed;
   /// Per operand: solid (closed, outward, no self-intersections, no nested or
   /// touching components: w in {0, 1}). Enables the shortcuts of Fig. 11.
   std::vector<char> solid;
-  std::size_t leaf_size = 256;  ///< subdivide while a subproblem has more polygons (tuned: docs/core.md "Subdivision")
+  std::size_t leaf_size = 256;  ///< subdivide while a subproblem has more polygons (tuned: docs/design.md "Subdivision")
   /// Leaves hand winding numbers across shared input edges instead of
   /// tracing every piece (edge_windings.hpp). Off only in tests that compare
   /// the two.

@@ -65,7 +65,7 @@ std::optional<FrameAxes> sliver_frame(std::span<const ContactTriangle> tris, con
 /// counted. Ordinary meshes examine 25-320 per triangle; EMBER case 582's
 /// first operand, solid, 1,126 without its frame, 90 with it; the sliver
 /// pile's left rod, which self-intersects, ~2,900 without, ~1,700 with
-/// (docs/core.md, "Solid proof"). A proof that gives up sends the operand
+/// (docs/design.md, "Solid proof"). A proof that gives up sends the operand
 /// down the general path, which costs case 582 four times the Boolean's time.
 inline constexpr std::size_t kBudgetPerTriangle = 2048;
 

@@ -12,10 +12,9 @@ namespace ember::core {
 /// compared) and its normal (p1 - p0) x (p2 - p0) (grid_normal), computed
 /// once per triangle instead of once per pair.
 /// The corners are referred to, not copied: the proof holds one entry per
-/// triangle of the operand it proves, and a copy (72 bytes) made the entry
-/// 112 bytes: 61 MB per operand of the 1.08M-triangle union (26 MB now),
-/// and at 16 threads both operands are proven at once (docs/redesign.md,
-/// session 21). The caller keeps the corners alive (the proof: GridTriangles::corners).
+/// triangle of the operand it proves, a copy (72 bytes) would more than
+/// double the entry, and at many threads every operand is proven at once.
+/// The caller keeps the corners alive (the proof: GridTriangles::corners).
 struct ContactTriangle {
   const std::array<IntPoint, 3>* corners = nullptr;
   std::array<std::int64_t, 3> n;
