@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The comparison benchmark of issue 4: ember vs CGAL corefinement (Epick) vs
+# The comparison benchmark: ember vs CGAL corefinement (Epick) vs
 # Manifold (manifold-3d WASM) on the EMBER paper's Section 5.1 protocol.
 # Details: docs/benchmark.md.
 #

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Comparison benchmark driver (issue 4): ember vs CGAL corefinement vs Manifold.
+"""Comparison benchmark driver: ember vs CGAL corefinement vs Manifold.
 
 Run through scripts/bench.sh (which installs the peers and builds the runners);
 the full protocol is described in docs/benchmark.md. This script:

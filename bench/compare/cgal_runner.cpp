@@ -1,4 +1,4 @@
-// CGAL peer of the comparison benchmark (issue 4); driven by bench/compare/bench.py.
+// CGAL peer of the comparison benchmark; driven by bench/compare/bench.py.
 //
 //   cgal_runner A.bin B.bin [--ops ..] [--runs R] [--budget-ms B] [--no-checks]
 //

@@ -1,4 +1,4 @@
-// ember side of the comparison benchmark (issue 4); driven by bench/compare/bench.py.
+// ember side of the comparison benchmark; driven by bench/compare/bench.py.
 //
 //   ember_bench prepare IN OUT.bin [--normalize] [--subdivide K] [--matrix m0,..,m15]
 //       Reads any mesh ember reads (OBJ/STL/OFF/PLY), fan-triangulates it,

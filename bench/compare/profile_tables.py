@@ -1,4 +1,4 @@
-"""Issue 10's figures for the comparison benchmark (bench.py): per-phase
+"""The profile figures of the comparison benchmark (bench.py): per-phase
 times, thread scaling, cold (first-run) times, peak RSS per input triangle and
 instructions per input triangle (callgrind). Each function returns markdown
 lines for summary.md; `count_instructions` runs the callgrind measurement."""
@@ -42,8 +42,8 @@ def phase_section(rows: list[dict], tools: list[str]) -> list[str]:
         return []
     L = ["## Time per phase (pool pairs + paper cases; sum of the per-case medians)\n",
          "setup = validation, quantization, grid triangles, closedness; proof = exact solid check; "
-         "solve = the solid path or the subdivision and leaves (the general path builds the root soup first, docs/core.md \"The root soup only where it is read\"; the solid path's direct route makes the triangle mesh there too, docs/core.md \"Direct route\"); output = mesh stage (weld, T-junctions, regions, triangulation). "
-         "At more than one thread the defaults start the solid path alongside the proof (docs/core.md, "
+         "solve = the solid path or the subdivision and leaves (the general path builds the root soup first, docs/design.md \"The root soup only where it is read\"; the solid path's direct route makes the triangle mesh there too, docs/design.md \"Direct route\"); output = mesh stage (weld, T-junctions, regions, triangulation). "
+         "At more than one thread the defaults start the solid path alongside the proof (docs/design.md, "
          "\"Pipeline\"): proof then runs until the proof ends, solve is what remains; read the two together.\n",
          "| ember | " + " | ".join(f"{p} s (share)" for p in PHASES) + " | total s | cases |",
          "|---|" + "---|" * (len(PHASES) + 2)]
@@ -178,7 +178,7 @@ def instructions_section(result: dict | None) -> list[str]:
             f"{result['mesh']} (normalized) ∪ its copy rotated 1° about (1, 2, 3), {result['triangles']} input "
             f"triangles, defaults (solid proof on), 1 thread, instructions inside `ember::boolean`: "
             f"**{result['instructions'] / 1e6:.0f} M = {result['per_triangle']:.0f} per input triangle** "
-            "(issue 10's target: at most 5,000).\n"]
+            "(target: at most 5,000).\n"]
 
 
 def per_case_section(rows: list[dict], tools: list[str]) -> list[str]:

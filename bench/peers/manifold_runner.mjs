@@ -1,4 +1,4 @@
-// Manifold peer of the comparison benchmark (issue 4); driven by bench/compare/bench.py.
+// Manifold peer of the comparison benchmark; driven by bench/compare/bench.py.
 //
 //   node manifold_runner.mjs A.bin B.bin [--ops ..] [--runs R] [--budget-ms B] [--warmup W]
 //

@@ -1,4 +1,4 @@
-// Issue 9 at the command line: no silent wrong result (grid errors and
+// At the command line: no silent wrong result (grid errors and
 // warnings), the private temporary output file, system reasons in errors,
 // usage errors with ranges, --version, reader tolerance and the solid check's
 // reasons in --stats.

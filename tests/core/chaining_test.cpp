@@ -1,4 +1,4 @@
-// Results feed straight back (issue 11): the default triangle output of a
+// Results feed straight back: the default triangle output of a
 // Boolean is closed, so it is a valid operand again with default options and
 // is proven solid; a chain of Booleans agrees with the one-pass n-ary
 // Boolean. The milling chain is the paper's motivating iterated-CSG use.
@@ -89,7 +89,7 @@ TEST(Chaining, ThirtyStepGridMillingIsProvenSolidAtEveryStep) {
 // rounded result can flip them; the solid proof then rejects the operand and
 // the general path (exact for any input) takes over: still closed, still
 // right, slower. Past about 13 steps the general path on such re-quantized
-// slivers fragments the output (open in issue 10/11), so 12 steps here.
+// slivers fragments the output, so 12 steps here.
 TEST(Chaining, BallMillingStaysClosedAndRightWhenRoundingBreaksTheProof) {
   const int proven = mill(12, ball_tool, 1e-6);
   RecordProperty("steps_with_previous_result_proven_solid", proven);
@@ -107,8 +107,8 @@ TEST(Chaining, SelfUnionReturnsTheInputsTriangles) {
 
 TEST(Chaining, CoplanarPileOfShiftedCubesBecomesOneBox) {
   // 100 unit cubes shifted by 0.01 along x (one operand each): the exact union
-  // is the box [0, 1.99] x [0, 1]^2, i.e. 12 triangles. (The 200-cube pile of
-  // issue 10 takes tens of seconds in the core today; the output is the same.)
+  // is the box [0, 1.99] x [0, 1]^2, i.e. 12 triangles. (tests/core/piles_test.cpp
+  // has the larger piles.)
   std::vector<Mesh> cubes;
   for (int i = 0; i < 100; ++i) cubes.push_back(box({0.01 * i, 0, 0}, {0.01 * i + 1, 1, 1}));
   const BooleanResult r = run_checked(std::span<const Mesh>(cubes), Operation::Union);

@@ -16,7 +16,7 @@
 namespace ember::test {
 
 /// The default output is a triangle mesh that is closed and consistently
-/// oriented whenever every operand is (issue 11): every edge balanced, no
+/// oriented whenever every operand is: every edge balanced, no
 /// fallback regions, no vertex inside a (manifold) edge.
 inline void expect_watertight_if_closed(std::span<const Mesh> ops, const BooleanOptions& opt, const BooleanResult& r) {
   if (opt.output != BooleanOptions::Output::Triangles) return;

@@ -1,6 +1,6 @@
-// Piles that no subdivision plane separates (issue 10, item 5): they must stay
+// Piles that no subdivision plane separates : they must stay
 // exact, and their leaves must not cut every polygon by every other one.
-// Times are reported from the CLI (docs/core.md), not asserted here.
+// Times are reported from the CLI (docs/design.md), not asserted here.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Issue 9: no silent wrong result from the grid (collapsed / flipped
+// No silent wrong result from the grid (collapsed / flipped
 // triangles, subnormal extents), the solid check's reasons in the stats, and
 // exact triangulation of concave n-gons before the solid proof.
 #include <string>

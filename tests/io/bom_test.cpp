@@ -1,4 +1,4 @@
-// Issue 9: readers accept a UTF-8 byte-order mark before the header (some
+// Readers accept a UTF-8 byte-order mark before the header (some
 // Windows tools write one), and an empty OBJ file is an error.
 #include <gtest/gtest.h>
 

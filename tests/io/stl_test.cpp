@@ -101,7 +101,7 @@ TEST(Stl, BinaryErrorsGiveByteOffsets) {
 }
 
 TEST(Stl, AsciiWithoutEndsolidIsReadWithAWarning) {
-  // Issue 9: other tools accept such files; the facets are complete, so they
+  // Other tools accept such files; the facets are complete, so they
   // are read and the missing line is reported as a warning, not an error.
   const std::string text =
       "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
