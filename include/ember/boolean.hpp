@@ -72,7 +72,7 @@ struct BooleanOptions {
   /// When every operand is solid (promised or proven), solve without the kd
   /// subdivision: only triangles that another operand's triangles come near
   /// are cut and traced, the others are classified by connected components
-  /// (docs/core.md, "Solid path"). The result is the same surface. false
+  /// (docs/design.md, "Solid path"). The result is the same surface. false
   /// forces the subdivision (for comparisons).
   bool solid_path = true;
   /// Output form. Triangles (default): an indexed triangle mesh, watertight
@@ -148,7 +148,7 @@ struct BooleanStats {
   /// Phases of time_ms: setup (validation, quantization, triangles, closedness),
   /// solid proof, the exact core, and output (mesh stage or polygon export).
   /// At more than one thread the solid path may start alongside the proof
-  /// (docs/core.md, "Pipeline"): proof_ms then ends when the proof does and
+  /// (docs/design.md, "Pipeline"): proof_ms then ends when the proof does and
   /// solve_ms is the rest of the solve.
   double setup_ms = 0, proof_ms = 0, solve_ms = 0, output_ms = 0;
   /// Steps of the mesh stage inside output_ms: exact weld, T-junction

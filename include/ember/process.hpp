@@ -8,12 +8,10 @@
 // up to 8 per core). A Boolean's worker threads allocate and free buffers of
 // every size; what a worker frees stays in its own heap, where no other
 // thread can reuse it, so peak memory grows with the thread count and with
-// every further Boolean in the same process. Measured on a 16-core Xeon, the
-// 1.08M-triangle union repeated in one process (four runs): peak RSS per
-// input triangle 520 bytes at 2 threads, 771 at 8 and 866-991 at 16; with two
-// arenas 513, 548 and 564-575, in the same or less time (docs/redesign.md,
-// session 21). One arena serializes the workers' allocations (16 threads:
-// 402 ms against 326 ms); two cost no measurable time.
+// every further Boolean in the same process. Two arenas keep the peak close
+// to the single-threaded one at no measurable cost in time, where one arena
+// would serialize the workers' allocations (docs/design.md, "Memory and
+// parallelism").
 #include <cstdlib>
 #include <cstring>
 
