@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/cli_harness.hpp"
+#include "support/cli_harness.hpp"
 #include "ember/boolean.hpp"
 #include "ember/io/mesh_io.hpp"
 #include "support/mesh_checks.hpp"

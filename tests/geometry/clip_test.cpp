@@ -2,7 +2,7 @@
 // vertex, exactly two vertices on the split plane, and the degenerate cases.
 #include <gtest/gtest.h>
 
-#include "polygon_check.hpp"
+#include "support/polygon_check.hpp"
 
 namespace ember::test {
 namespace {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "geometry/exact_order.hpp"
-#include "oracle.hpp"
+#include "support/geometry_oracle.hpp"
 
 namespace ember::test {
 namespace {

@@ -1,7 +1,7 @@
 // Line and segment versus polygon, including exact degenerate hits.
 #include <gtest/gtest.h>
 
-#include "polygon_check.hpp"
+#include "support/polygon_check.hpp"
 
 namespace ember::test {
 namespace {

@@ -1,7 +1,7 @@
 // Plane construction and plane-pair predicates against the GMP oracle.
 #include <gtest/gtest.h>
 
-#include "oracle.hpp"
+#include "support/geometry_oracle.hpp"
 
 namespace ember::test {
 namespace {

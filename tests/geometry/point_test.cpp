@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "oracle.hpp"
+#include "support/geometry_oracle.hpp"
 
 namespace ember::test {
 namespace {

@@ -1,7 +1,7 @@
 // Polygon construction and point location.
 #include <gtest/gtest.h>
 
-#include "polygon_check.hpp"
+#include "support/polygon_check.hpp"
 
 namespace ember::test {
 namespace {

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "ember/io/mesh_io.hpp"
-#include "io/test_util.hpp"
+#include "support/io_files.hpp"
 
 namespace ember {
 namespace {

@@ -5,7 +5,7 @@
 #include <unistd.h>
 
 #include "ember/io/mesh_io.hpp"
-#include "io/test_util.hpp"
+#include "support/io_files.hpp"
 
 namespace ember {
 namespace {

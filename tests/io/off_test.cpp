@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "ember/io/mesh_io.hpp"
-#include "io/test_util.hpp"
+#include "support/io_files.hpp"
 
 namespace ember {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "ember/boolean.hpp"
 #include "ember/io/mesh_io.hpp"
-#include "io/test_util.hpp"
+#include "support/io_files.hpp"
 
 namespace ember {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <algorithm>
 
-#include "numbers/oracle.hpp"
+#include "support/numbers_oracle.hpp"
 
 namespace ember::test {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "numbers/oracle.hpp"
+#include "support/numbers_oracle.hpp"
 
 namespace ember::test {
 namespace {

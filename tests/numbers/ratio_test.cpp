@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "numbers/ratio.hpp"
-#include "numbers/oracle.hpp"
+#include "support/numbers_oracle.hpp"
 #include "support/correct_rounding.hpp"
 
 namespace ember::test {

@@ -4,7 +4,7 @@
 // count gives bit-identical output.
 #include <gtest/gtest.h>
 
-#include "core_test_util.hpp"
+#include "support/boolean_checks.hpp"
 
 namespace ember::test {
 namespace {

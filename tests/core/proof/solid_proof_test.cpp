@@ -13,7 +13,7 @@
 #include "core/model/components.hpp"
 #include "core/search/triangle_contact.hpp"
 #include "core/support/fill_vector.hpp"
-#include "core_test_util.hpp"
+#include "support/boolean_checks.hpp"
 
 namespace ember::test {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/core_test_util.hpp"
+#include "support/boolean_checks.hpp"
 
 namespace ember::test {
 namespace {

@@ -11,7 +11,7 @@
 #include <numbers>
 #include <random>
 
-#include "contact_test_util.hpp"
+#include "support/contact_fixtures.hpp"
 #include "core/proof/contact_search.hpp"
 #include "core/proof/vertex_stars.hpp"
 #include "support/shapes.hpp"

@@ -5,7 +5,7 @@
 #include <limits>
 #include <optional>
 
-#include "core/core_test_util.hpp"
+#include "support/boolean_checks.hpp"
 
 namespace ember::test {
 namespace {

@@ -8,7 +8,7 @@
 // the exact result. The only error left is the final rounding of each output
 // coordinate to double (relative 2^-53 of |x| <= 4), which moves each output
 // volume by about (surface area) * 1e-16: far below the 1e-9 relative bound.
-#include "core/core_test_util.hpp"
+#include "support/boolean_checks.hpp"
 
 namespace ember::test {
 namespace {

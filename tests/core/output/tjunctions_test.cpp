@@ -7,7 +7,7 @@
 // searched that way at all); the set-up's manifold bits are checked first.
 #include <gtest/gtest.h>
 
-#include "core/core_test_util.hpp"
+#include "support/boolean_checks.hpp"
 #include "core/input/grid_input.hpp"
 #include "core/input/input_triangles.hpp"
 #include "core/output/output_vertices.hpp"

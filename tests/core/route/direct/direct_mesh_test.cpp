@@ -7,7 +7,7 @@
 // closed curves, and the fallback for contacts that are not transversal.
 #include <gtest/gtest.h>
 
-#include "core_test_util.hpp"
+#include "support/boolean_checks.hpp"
 
 namespace ember::test {
 namespace {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/core_test_util.hpp"
+#include "support/boolean_checks.hpp"
 #include "ember/io/mesh_io.hpp"
 
 namespace ember::test {

@@ -22,7 +22,7 @@
 #define EMBER_HAVE_MESH_IO 1
 #endif
 
-#include "core/core_test_util.hpp"
+#include "support/boolean_checks.hpp"
 
 namespace ember::test {
 namespace {

@@ -14,7 +14,7 @@
 #include <span>
 #include <vector>
 
-#include "contact_test_util.hpp"
+#include "support/contact_fixtures.hpp"
 #include "core/search/leaf_frame_extents.hpp"
 #include "core/search/operand_trees.hpp"
 #include "core/route/solid/solid_route.hpp"

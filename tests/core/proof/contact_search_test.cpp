@@ -17,8 +17,8 @@
 #include "core/search/extents.hpp"
 #include "core/search/triangle_contact.hpp"
 #include "core/search/triangle_tree.hpp"
-#include "contact_test_util.hpp"
-#include "core_test_util.hpp"
+#include "support/contact_fixtures.hpp"
+#include "support/boolean_checks.hpp"
 
 namespace ember::test {
 namespace {

@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "core/route/general/subdivide.hpp"
-#include "core_test_util.hpp"
+#include "support/boolean_checks.hpp"
 
 namespace ember::test {
 namespace {

@@ -9,7 +9,7 @@
 #include <regex>
 #include <string>
 
-#include "cli/cli_harness.hpp"
+#include "support/cli_harness.hpp"
 #include "ember/io/mesh_io.hpp"
 #include "support/mesh_checks.hpp"
 #include "support/shapes.hpp"
@@ -91,7 +91,7 @@ TEST(CliGrid, SubnormalRangeInputIsRefused) {
   EXPECT_FALSE(fs::exists(dir / "out.obj"));
 }
 
-// ---- item 4: the temporary output file --------------------------------------------
+// ---- the temporary output file --------------------------------------------
 
 TEST(CliOutputFile, PlantedSymlinkAtTheOldTemporaryNameIsNotFollowed) {
   TempDir dir;
@@ -183,7 +183,7 @@ TEST(CliErrors, SystemErrorsCarryTheSystemReason) {
   EXPECT_EQ(dir.listing(), (std::set<std::string>{"a.obj", "b.obj", "plain"}));
 }
 
-// ---- item 7: usage errors and --version ---------------------------------------------
+// ---- usage errors and --version ---------------------------------------------
 
 TEST(CliUsage, BadValuesNameTheOptionAndTheAcceptedRange) {
   TempDir dir;
@@ -225,7 +225,7 @@ TEST(CliUsage, VersionFlagAndStatsField) {
   EXPECT_EQ(stats_value(r.err, "version"), std::string("\"") + EMBER_VERSION_FOR_TESTS + "\"") << describe(r);
 }
 
-// ---- item 8: reader tolerance ------------------------------------------------------
+// ---- reader tolerance ------------------------------------------------------
 
 TEST(CliReaders, ByteOrderMarkAndStlWithoutEndsolid) {
   TempDir dir;
@@ -247,7 +247,7 @@ TEST(CliReaders, ByteOrderMarkAndStlWithoutEndsolid) {
   EXPECT_EQ(ember::test::volume(ember::read_mesh(dir / "o.obj")), 1);
 }
 
-// ---- item 9: why an operand is not solid -------------------------------------------
+// ---- why an operand is not solid -------------------------------------------
 
 TEST(CliSolidCheck, StatsAndWarningSayWhyAnOperandIsNotSolid) {
   TempDir dir;
@@ -272,7 +272,7 @@ TEST(CliSolidCheck, StatsAndWarningSayWhyAnOperandIsNotSolid) {
 
 }  // namespace
 
-// ---- item 10: concave OBJ n-gons pass the solid check -------------------------------
+// ---- concave OBJ n-gons pass the solid check -------------------------------
 
 TEST(CliSolidCheck, ConcaveObjPolygonsAreTriangulatedBeforeTheProof) {
   TempDir dir;

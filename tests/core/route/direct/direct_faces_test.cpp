@@ -8,9 +8,9 @@
 #include <optional>
 #include <random>
 
-#include "contact_test_util.hpp"
+#include "support/contact_fixtures.hpp"
 #include "core/route/direct/direct_faces.hpp"
-#include "geometry/oracle.hpp"
+#include "support/geometry_oracle.hpp"
 #include "support/int_gmp.hpp"
 
 namespace ember::test {

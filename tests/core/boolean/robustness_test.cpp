@@ -8,7 +8,7 @@
 // with the unrotated analytic value must allow for the snapping itself: each
 // vertex moves by at most h*sqrt(3)/2 < h, which changes a volume by at most
 // (surface area) * h; that is the tolerance used.
-#include "core/core_test_util.hpp"
+#include "support/boolean_checks.hpp"
 
 namespace ember::test {
 namespace {

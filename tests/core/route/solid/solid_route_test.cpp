@@ -6,7 +6,7 @@
 // input edges, coplanar overlaps, touching without crossing, many operands.
 #include <gtest/gtest.h>
 
-#include "core_test_util.hpp"
+#include "support/boolean_checks.hpp"
 
 namespace ember::test {
 namespace {

@@ -3,7 +3,7 @@
 // defining planes, strict convexity, and the exact (rational) projected area.
 #include <gtest/gtest.h>
 
-#include "oracle.hpp"
+#include "support/geometry_oracle.hpp"
 
 namespace ember::test {
 
