@@ -65,7 +65,8 @@ bench::TriMesh subdivide(const bench::TriMesh& m) {
 }
 
 int prepare(int argc, char** argv) {
-  if (argc < 4) throw std::runtime_error("usage: ember_bench prepare IN OUT [--normalize] [--subdivide K] [--matrix ..]");
+  if (argc < 4)
+    throw std::runtime_error("usage: ember_bench prepare IN OUT [--normalize] [--subdivide K] [--matrix ..]");
   std::string in = argv[2], out = argv[3];
   bool normalize = false;
   int subdiv = 0;
@@ -120,14 +121,13 @@ std::string phase_medians(std::span<const ember::BooleanStats> runs) {
     return bench::median_of(std::move(v));
   };
   std::string out;
-  for (const auto& [name, field] : {std::pair{"setup_ms", &ember::BooleanStats::setup_ms},
-                                    std::pair{"proof_ms", &ember::BooleanStats::proof_ms},
-                                    std::pair{"solve_ms", &ember::BooleanStats::solve_ms},
-                                    std::pair{"output_ms", &ember::BooleanStats::output_ms},
-                                    std::pair{"weld_ms", &ember::BooleanStats::weld_ms},
-                                    std::pair{"tjunction_ms", &ember::BooleanStats::tjunction_ms},
-                                    std::pair{"regions_ms", &ember::BooleanStats::regions_ms},
-                                    std::pair{"triangulate_ms", &ember::BooleanStats::triangulate_ms}})
+  for (const auto& [name, field] :
+       {std::pair{"setup_ms", &ember::BooleanStats::setup_ms}, std::pair{"proof_ms", &ember::BooleanStats::proof_ms},
+        std::pair{"solve_ms", &ember::BooleanStats::solve_ms}, std::pair{"output_ms", &ember::BooleanStats::output_ms},
+        std::pair{"weld_ms", &ember::BooleanStats::weld_ms},
+        std::pair{"tjunction_ms", &ember::BooleanStats::tjunction_ms},
+        std::pair{"regions_ms", &ember::BooleanStats::regions_ms},
+        std::pair{"triangulate_ms", &ember::BooleanStats::triangulate_ms}})
     out += std::string(",\"") + name + "\":" + bench::json_number(median(field));
   return out;
 }

@@ -31,8 +31,8 @@ struct RunnerArgs {
   int runs = 5;
   double budget_ms = 1e300;  // stop repeating once this much time was spent (at least one run)
   int threads = 1;
-  int warmup = 0;  // untimed runs before the timed ones (the first reported as cold_ms)
-  bool solid = false;  // ember only: BooleanOptions::all_solid (--assume-solid)
+  int warmup = 0;          // untimed runs before the timed ones (the first reported as cold_ms)
+  bool solid = false;      // ember only: BooleanOptions::all_solid (--assume-solid)
   bool no_detect = false;  // ember only: BooleanOptions::detect_solid = false
 };
 
@@ -139,7 +139,8 @@ inline void time_op(const char* tool, const RunnerArgs& args, const std::string&
   }
   std::printf(
       "{\"tool\":\"%s\",\"op\":\"%s\",\"threads\":%d,\"ok\":%s,\"runs\":%zu,\"median_ms\":%s,\"times_ms\":[%s],"
-      "\"cold_ms\":%s,\"out_polygons\":%zu,\"out_volume\":%s,\"in_triangles\":%zu,\"peak_rss_kib\":%ld,\"error\":\"%s\"%s}\n",
+      "\"cold_ms\":%s,\"out_polygons\":%zu,\"out_volume\":%s,\"in_triangles\":%zu,\"peak_rss_kib\":%ld,\"error\":\"%"
+      "s\"%s}\n",
       tool, op.c_str(), args.threads, out.ok ? "true" : "false", times.size(),
       out.ok ? json_number(median).c_str() : "null", ts.c_str(), cold_ms >= 0 ? json_number(cold_ms).c_str() : "null",
       out.polygons, out.ok ? json_number(out.volume).c_str() : "null", in_triangles, peak_rss_kib(),

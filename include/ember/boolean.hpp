@@ -112,19 +112,19 @@ struct OperandReport {
   /// stopped at kMaxReportedPairs or, in a pile of overlapping slivers, at its
   /// work budget once a pair had decided the verdict.
   bool self_intersecting_pairs_complete = true;
-  std::size_t misoriented_components = 0;   ///< components with winding number != 0 in front
+  std::size_t misoriented_components = 0;  ///< components with winding number != 0 in front
   static constexpr std::size_t kMaxReportedPairs = 1000;
 };
 
 struct BooleanStats {
   std::size_t input_triangles = 0;
-  std::size_t dropped_degenerate = 0;  ///< triangles degenerate on the integer grid (collapsed or already degenerate)
+  std::size_t dropped_degenerate = 0;   ///< triangles degenerate on the integer grid (collapsed or already degenerate)
   std::size_t collapsed_triangles = 0;  ///< of those, triangles with area in the input (sum over operands)
   std::size_t flipped_triangles = 0;    ///< triangles whose orientation the grid reversed (sum over operands)
   double grid_step = 0;                 ///< quantization grid spacing in the caller's units
   std::size_t output_polygons = 0;
   std::size_t dropped_slivers = 0;  ///< exact output slivers whose rounded vertices have zero area
-  std::size_t solid_operands = 0;  ///< operands treated as solid (promised or proven)
+  std::size_t solid_operands = 0;   ///< operands treated as solid (promised or proven)
   /// Input triangles the subdivision had cut into pieces that all reached the
   /// output uncut, passed on whole instead of as pieces.
   std::size_t merged_triangles = 0;
@@ -144,7 +144,7 @@ struct BooleanStats {
   /// Output triangles whose rounded (double) corners have zero area.
   std::size_t rounded_degenerate = 0;
   std::vector<OperandReport> operands;  ///< one per operand
-  double time_ms = 0;  ///< quantization + core + export
+  double time_ms = 0;                   ///< quantization + core + export
   /// Phases of time_ms: setup (validation, quantization, triangles, closedness),
   /// solid proof, the exact core, and output (mesh stage or polygon export).
   /// At more than one thread the solid path may start alongside the proof

@@ -31,9 +31,7 @@ struct Mesh {
 
   std::size_t face_count() const { return face_offsets.size() - 1; }
   std::size_t face_size(std::size_t f) const { return face_offsets[f + 1] - face_offsets[f]; }
-  std::span<const std::uint32_t> face(std::size_t f) const {
-    return {indices.data() + face_offsets[f], face_size(f)};
-  }
+  std::span<const std::uint32_t> face(std::size_t f) const { return {indices.data() + face_offsets[f], face_size(f)}; }
   /// Number of triangles a fan triangulation of every face would give.
   std::size_t triangle_count() const {
     std::size_t n = 0;
@@ -48,7 +46,9 @@ struct Mesh {
     indices.insert(indices.end(), f.begin(), f.end());
     face_offsets.push_back(static_cast<std::uint32_t>(indices.size()));
   }
-  void add_face(std::initializer_list<std::uint32_t> f) { add_face(std::span<const std::uint32_t>(f.begin(), f.size())); }
+  void add_face(std::initializer_list<std::uint32_t> f) {
+    add_face(std::span<const std::uint32_t>(f.begin(), f.size()));
+  }
   bool empty() const { return face_count() == 0; }
   friend bool operator==(const Mesh&, const Mesh&) = default;
 };

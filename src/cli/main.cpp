@@ -46,7 +46,8 @@ const char* operation_name(ember::Operation op) {
 }
 
 /// Writes a mesh in the format of out's extension (atomically, privately).
-void write_atomically(const ember::Mesh& mesh, const fs::path& out, std::span<const ember::Provenance> provenance = {}) {
+void write_atomically(const ember::Mesh& mesh, const fs::path& out,
+                      std::span<const ember::Provenance> provenance = {}) {
   ember::cli::write_file_atomically(ember::write_mesh(mesh, ember::format_from_path(out), provenance), out);
 }
 
@@ -65,7 +66,7 @@ std::string name_operand(const std::string& msg, const std::vector<std::string>&
 struct BooleanArgs {
   std::vector<std::string> inputs;
   std::string output;
-  std::string min_k;    ///< as given (checked after parsing: usage.hpp)
+  std::string min_k;  ///< as given (checked after parsing: usage.hpp)
   std::string threads = "0";
   bool stats = false;
   bool allow_open = false;
@@ -168,7 +169,9 @@ int main(int argc, char** argv) {
   std::vector<std::pair<CLI::App*, ember::Operation>> subs;
   for (const Command& c : commands) {
     CLI::App* sub = app.add_subcommand(c.name, c.help);
-    sub->add_option("inputs", args.inputs, "Input meshes (two or more; each object of a 3MF file is one)")->required()->expected(2, -1);
+    sub->add_option("inputs", args.inputs, "Input meshes (two or more; each object of a 3MF file is one)")
+        ->required()
+        ->expected(2, -1);
     sub->add_option("-o,--output", args.output, "Output mesh; format from extension")->required();
     sub->add_option("--min-k", args.min_k, "union only: keep the solid inside at least K inputs (1..inputs)");
     sub->add_option("--threads", args.threads, "Worker threads (0 = all cores; results are identical)");

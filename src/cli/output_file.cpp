@@ -61,7 +61,8 @@ void check_replaceable(const std::filesystem::path& out) {
   if (::lstat(out.c_str(), &st) != 0) return;  // absent (or unreadable: creating the temp file reports why)
   if (S_ISREG(st.st_mode)) return;
   const char* kind = S_ISDIR(st.st_mode) ? "a directory" : S_ISLNK(st.st_mode) ? "a symbolic link" : "a special file";
-  fail(out, std::string("exists and is ") + kind + ", not a regular file; refusing to replace it (remove it or choose another -o)");
+  fail(out, std::string("exists and is ") + kind +
+                ", not a regular file; refusing to replace it (remove it or choose another -o)");
 }
 
 /// Removes the temporary file and forgets it.

@@ -42,7 +42,8 @@ void print_stats(const BooleanResult& r, const char* operation, const std::vecto
   std::fprintf(stderr,
                "{\"version\": \"%s\", \"operation\": \"%s\", \"input_triangles\": %zu, \"dropped_degenerate\": %zu, "
                "\"collapsed_triangles\": %zu, \"flipped_triangles\": %zu, \"grid_step\": %.17g, "
-               "\"output_polygons\": %zu, \"dropped_slivers\": %zu, \"solid_operands\": %zu, \"merged_triangles\": %zu, \"solid_path\": %d, \"direct_mesh\": %d, "
+               "\"output_polygons\": %zu, \"dropped_slivers\": %zu, \"solid_operands\": %zu, \"merged_triangles\": "
+               "%zu, \"solid_path\": %d, \"direct_mesh\": %d, "
                "\"open_edges\": %zu, \"self_intersecting_pairs\": %zu, \"self_intersecting_pairs_complete\": %d, "
                "\"misoriented_components\": %zu, "
                "\"solid_check\": %s, \"output_vertices\": %zu, \"tjunctions_resolved\": %zu, "
@@ -51,12 +52,12 @@ void print_stats(const BooleanResult& r, const char* operation, const std::vecto
                "\"solve_ms\": %.3f, \"output_ms\": %.3f, \"weld_ms\": %.3f, \"tjunction_ms\": %.3f, "
                "\"regions_ms\": %.3f, \"triangulate_ms\": %.3f, \"threads\": %d}\n",
                EMBER_VERSION, operation, s.input_triangles, s.dropped_degenerate, s.collapsed_triangles,
-               s.flipped_triangles, s.grid_step, s.output_polygons, s.dropped_slivers, s.solid_operands, s.merged_triangles,
-               s.solid_path ? 1 : 0, s.direct_mesh ? 1 : 0, open_edges,
-               pairs, pairs_complete ? 1 : 0, misoriented, json_string(solid_check).c_str(), s.output_vertices, s.tjunctions_resolved,
-               s.collinear_removed, s.regions, s.fallback_regions, s.rounded_degenerate, s.time_ms, s.setup_ms,
-               s.proof_ms, s.solve_ms, s.output_ms, s.weld_ms, s.tjunction_ms, s.regions_ms, s.triangulate_ms,
-               s.threads);
+               s.flipped_triangles, s.grid_step, s.output_polygons, s.dropped_slivers, s.solid_operands,
+               s.merged_triangles, s.solid_path ? 1 : 0, s.direct_mesh ? 1 : 0, open_edges, pairs,
+               pairs_complete ? 1 : 0, misoriented, json_string(solid_check).c_str(), s.output_vertices,
+               s.tjunctions_resolved, s.collinear_removed, s.regions, s.fallback_regions, s.rounded_degenerate,
+               s.time_ms, s.setup_ms, s.proof_ms, s.solve_ms, s.output_ms, s.weld_ms, s.tjunction_ms, s.regions_ms,
+               s.triangulate_ms, s.threads);
 }
 
 }  // namespace ember::cli

@@ -11,7 +11,8 @@ int parse_int_option(const std::string& option, const std::string& text, long lo
   const auto [ptr, ec] = std::from_chars(text.data(), end, value);
   if (ec == std::errc{} && ptr == end && value >= lo && value <= hi) return static_cast<int>(value);
   const bool number = ptr == end && (ec == std::errc{} || ec == std::errc::result_out_of_range) && !text.empty();
-  throw UsageError(option + ": " + (number ? "'" + text + "' is out of range" : "'" + text + "' is not a whole number") +
+  throw UsageError(option + ": " +
+                   (number ? "'" + text + "' is out of range" : "'" + text + "' is not a whole number") +
                    "; accepted: " + range);
 }
 

@@ -36,9 +36,9 @@ struct AxisPoint {
 
 /// The axis-parallel line through dyadic (U, V)/2^s on the other two axes.
 struct AxisLine {
-  int axis = 0;   ///< direction of the line
-  DyadicNum u, v; ///< numerators on axes (axis+1)%3 and (axis+2)%3
-  int shift = 0;  ///< common denominator 2^shift, shift <= 52
+  int axis = 0;    ///< direction of the line
+  DyadicNum u, v;  ///< numerators on axes (axis+1)%3 and (axis+2)%3
+  int shift = 0;   ///< common denominator 2^shift, shift <= 52
 };
 
 namespace detail {
@@ -55,7 +55,8 @@ inline auto axis_line_offset(const AxisLine& l, const Plane& p) {
 inline bool meet(const AxisLine& l, const Plane& p, AxisPoint& out, bool* in_plane = nullptr) {
   const NormalCoef& na = p.normal(l.axis);
   const auto off = detail::axis_line_offset(l, p);
-  static_assert(std::is_same_v<std::remove_cv_t<decltype(off)>, AxisPointCoord>, "offset: 131 + 131 -> 132, + 133 -> 134 bits");
+  static_assert(std::is_same_v<std::remove_cv_t<decltype(off)>, AxisPointCoord>,
+                "offset: 131 + 131 -> 132, + 133 -> 134 bits");
   if (na.is_zero()) {
     if (in_plane) *in_plane = off.is_zero();
     return false;

@@ -30,10 +30,10 @@ static_assert(std::is_same_v<decltype(PointXYZ{} * PointW{} - PointXYZ{} * Point
 using ProjectedMinor = Int<377>;
 /// Homogeneous 2D orientation: w (162) times a minor (377) = 539, three terms -> 541.
 using Orient2Value = Int<541>;
-static_assert(std::is_same_v<decltype(PointW{} * ProjectedMinor{} - PointW{} * ProjectedMinor{} +
-                                      PointW{} * ProjectedMinor{}),
-                             Orient2Value>,
-              "projected orientation: 162 + 377 = 539, three terms -> 541");
+static_assert(
+    std::is_same_v<decltype(PointW{} * ProjectedMinor{} - PointW{} * ProjectedMinor{} + PointW{} * ProjectedMinor{}),
+                   Orient2Value>,
+    "projected orientation: 162 + 377 = 539, three terms -> 541");
 static_assert(Orient2Value::bits <= kWideMaxBits, "orientation must fit the wide storage limit");
 
 namespace detail {

@@ -29,7 +29,7 @@ namespace detail {
 /// The error path, kept out of line so the range check inlines into callers.
 [[noreturn, gnu::noinline, gnu::cold]] inline void throw_out_of_range(const IntPoint& p) {
   throw Error("ember geometry: grid point (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
-                std::to_string(p.z) + ") exceeds the coordinate limit 2^25; quantize the input into [-2^25, 2^25]");
+              std::to_string(p.z) + ") exceeds the coordinate limit 2^25; quantize the input into [-2^25, 2^25]");
 }
 inline void require_in_range(const IntPoint& p) {
   if (!in_range(p)) [[unlikely]]
@@ -145,9 +145,11 @@ inline Plane edge_plane(const IntPoint& p0, const IntPoint& p1, const Plane& sup
 
 /// The plane x_axis = position with normal +e_axis (positive side: larger coordinate).
 inline Plane axis_plane(int axis, std::int64_t position) {
-  if (axis < 0 || axis > 2) throw Error("ember geometry: axis_plane axis must be 0, 1 or 2, got " + std::to_string(axis));
+  if (axis < 0 || axis > 2)
+    throw Error("ember geometry: axis_plane axis must be 0, 1 or 2, got " + std::to_string(axis));
   if (position < -kCoordLimit || position > kCoordLimit)
-    throw Error("ember geometry: axis_plane position " + std::to_string(position) + " exceeds the coordinate limit 2^25");
+    throw Error("ember geometry: axis_plane position " + std::to_string(position) +
+                " exceeds the coordinate limit 2^25");
   Plane p{0, 0, 0, -position};
   if (axis == 0) p.a = 1;
   if (axis == 1) p.b = 1;
@@ -165,23 +167,20 @@ inline bool coplanar(const Plane& p, const Plane& q) {
   if (!parallel(p, q)) return false;
   // Parallel normals; the planes coincide iff d is scaled like the normal, i.e.
   // every minor n_i d_q - n_qi d_p vanishes (53+79 = 132 bits per product).
-  return (p.a * q.d - q.a * p.d).is_zero() && (p.b * q.d - q.b * p.d).is_zero() &&
-         (p.c * q.d - q.c * p.d).is_zero();
+  return (p.a * q.d - q.a * p.d).is_zero() && (p.b * q.d - q.b * p.d).is_zero() && (p.c * q.d - q.c * p.d).is_zero();
 }
 
 /// Normals point the same way (n_p . n_q > 0). Meaningful for parallel planes.
-inline bool same_orientation(const Plane& p, const Plane& q) {
-  return (p.a * q.a + p.b * q.b + p.c * q.c).sign() > 0;
-}
+inline bool same_orientation(const Plane& p, const Plane& q) { return (p.a * q.a + p.b * q.b + p.c * q.c).sign() > 0; }
 
 /// Side of a grid point: sign(a*x + b*y + c*z + d). 82 bits, one __int128.
 inline int classify(const IntPoint& x, const Plane& p) {
   const IntClassifyValue v = p.a * Coord(x.x) + p.b * Coord(x.y) + p.c * Coord(x.z) + p.d;
   return v.sign();
 }
-static_assert(std::is_same_v<decltype(NormalCoef{} * Coord{} + NormalCoef{} * Coord{} + NormalCoef{} * Coord{} +
-                                      OffsetCoef{}),
-                             IntClassifyValue>,
-              "integer classify: 53+26 = 79, three products -> 81, + d(79) -> 82");
+static_assert(
+    std::is_same_v<decltype(NormalCoef{} * Coord{} + NormalCoef{} * Coord{} + NormalCoef{} * Coord{} + OffsetCoef{}),
+                   IntClassifyValue>,
+    "integer classify: 53+26 = 79, three products -> 81, + d(79) -> 82");
 
 }  // namespace ember

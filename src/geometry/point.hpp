@@ -51,10 +51,10 @@ inline bool intersect_raw(const Plane& p, const Plane& q, const Plane& r, Point&
   const OffsetMinor m_bd = p.b * q.d - p.d * q.b;
   const OffsetMinor m_cd = p.c * q.d - p.d * q.c;
   // det over columns (i,j,k) of [p; q; r] = r_i m_jk - r_j m_ik + r_k m_ij.
-  const PointW det_abc = r.a * m_bc - r.b * m_ac + r.c * m_ab;     // 53+107 = 160, three terms -> 162
-  const PointXYZ det_bcd = r.b * m_cd - r.c * m_bd + r.d * m_bc;   // 53+133 = 79+107 = 186 -> 188
-  const PointXYZ det_acd = r.a * m_cd - r.c * m_ad + r.d * m_ac;   // same
-  const PointXYZ det_abd = r.a * m_bd - r.b * m_ad + r.d * m_ab;   // same
+  const PointW det_abc = r.a * m_bc - r.b * m_ac + r.c * m_ab;    // 53+107 = 160, three terms -> 162
+  const PointXYZ det_bcd = r.b * m_cd - r.c * m_bd + r.d * m_bc;  // 53+133 = 79+107 = 186 -> 188
+  const PointXYZ det_acd = r.a * m_cd - r.c * m_ad + r.d * m_ac;  // same
+  const PointXYZ det_abd = r.a * m_bd - r.b * m_ad + r.d * m_ab;  // same
   // X = (+det_bcd, -det_acd, +det_abd, -det_abc).
   out.x = det_bcd;
   out.y = -det_acd;
@@ -62,14 +62,14 @@ inline bool intersect_raw(const Plane& p, const Plane& q, const Plane& r, Point&
   out.w = -det_abc;
   return !det_abc.is_zero();
 }
-static_assert(std::is_same_v<decltype(NormalCoef{} * NormalMinor{} - NormalCoef{} * NormalMinor{} +
-                                      NormalCoef{} * NormalMinor{}),
-                             PointW>,
-              "x4: normal (53) * normal minor (107) = 160, three terms -> 162");
-static_assert(std::is_same_v<decltype(NormalCoef{} * OffsetMinor{} - NormalCoef{} * OffsetMinor{} +
-                                      OffsetCoef{} * NormalMinor{}),
-                             PointXYZ>,
-              "x1..x3: 53+133 = 79+107 = 186 per term, three terms -> 188");
+static_assert(
+    std::is_same_v<decltype(NormalCoef{} * NormalMinor{} - NormalCoef{} * NormalMinor{} + NormalCoef{} * NormalMinor{}),
+                   PointW>,
+    "x4: normal (53) * normal minor (107) = 160, three terms -> 162");
+static_assert(
+    std::is_same_v<decltype(NormalCoef{} * OffsetMinor{} - NormalCoef{} * OffsetMinor{} + OffsetCoef{} * NormalMinor{}),
+                   PointXYZ>,
+    "x1..x3: 53+133 = 79+107 = 186 per term, three terms -> 188");
 
 /// intersect_raw(p, q, axis_plane(axis, t), out), with the zero products of the
 /// unit axis normal left out (r = e_axis, r.d = -t). Same bounds: every term is
@@ -165,7 +165,9 @@ inline int classify_exact(const Point& pt, const Plane& s) {
 struct PlaneApprox {
   double a, b, c, d;
   explicit PlaneApprox(const Plane& s)
-      : a(static_cast<double>(s.a.raw())), b(static_cast<double>(s.b.raw())), c(static_cast<double>(s.c.raw())),
+      : a(static_cast<double>(s.a.raw())),
+        b(static_cast<double>(s.b.raw())),
+        c(static_cast<double>(s.c.raw())),
         d(static_cast<double>(s.d.raw())) {}
 };
 

@@ -58,8 +58,7 @@ MeshFormat format_from_path(const std::filesystem::path& path) {
               "' (supported: .obj, .stl, .off, .ply, .3mf)");
 }
 
-Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name,
-               std::vector<std::string>* warnings) {
+Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name, std::vector<std::string>* warnings) {
   switch (format) {
     case MeshFormat::Obj: return read_obj(bytes, name);
     case MeshFormat::Stl: return read_stl(bytes, name, warnings);

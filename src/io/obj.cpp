@@ -15,11 +15,10 @@ namespace {
 
 bool is_ignored_statement(std::string_view kw) {
   static constexpr std::array<std::string_view, 40> kIgnored = {
-      "vt",     "vn",       "vp",       "g",     "o",        "s",        "usemtl",   "mtllib",
-      "l",      "p",        "maplib",   "usemap", "lod",     "bevel",    "c_interp", "d_interp",
-      "shadow_obj", "trace_obj", "cstype", "deg", "bmat",    "step",     "curv",     "curv2",
-      "surf",   "parm",     "trim",     "hole",  "scrv",     "sp",       "end",      "con",
-      "mg",     "call",     "csh",      "ctech", "stech",    "bsp",      "bzp",      "res"};
+      "vt",     "vn",     "vp",   "g",     "o",        "s",        "usemtl",     "mtllib",    "l",      "p",
+      "maplib", "usemap", "lod",  "bevel", "c_interp", "d_interp", "shadow_obj", "trace_obj", "cstype", "deg",
+      "bmat",   "step",   "curv", "curv2", "surf",     "parm",     "trim",       "hole",      "scrv",   "sp",
+      "end",    "con",    "mg",   "call",  "csh",      "ctech",    "stech",      "bsp",       "bzp",    "res"};
   return std::find(kIgnored.begin(), kIgnored.end(), kw) != kIgnored.end();
 }
 
@@ -69,8 +68,7 @@ Mesh read_obj(std::string_view bytes, std::string_view name) {
         const std::int64_t i = s.integer("face index", '/');
         s.skip_token_rest();  // "/vt/vn" is not used
         if (i > 0) {
-          if (i > static_cast<std::int64_t>(kMaxVertices))
-            s.fail("face index " + std::to_string(i) + " out of range");
+          if (i > static_cast<std::int64_t>(kMaxVertices)) s.fail("face index " + std::to_string(i) + " out of range");
           if (i > max_index) {
             max_index = i;
             max_index_line = s.line();

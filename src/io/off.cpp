@@ -53,7 +53,8 @@ Mesh read_off(std::string_view bytes, std::string_view name) {
   mesh.vertices.resize(static_cast<std::size_t>(nv));
   for (std::int64_t v = 0; v < nv; ++v) {
     if (s.at_end())
-      s.fail("file ends after " + std::to_string(v) + " of the " + std::to_string(nv) + " vertices the header declares");
+      s.fail("file ends after " + std::to_string(v) + " of the " + std::to_string(nv) +
+             " vertices the header declares");
     Vec3d& p = mesh.vertices[static_cast<std::size_t>(v)];
     p.x = s.real("vertex x coordinate");
     on_line("vertex y coordinate");

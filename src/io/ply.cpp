@@ -43,9 +43,13 @@ std::optional<PlyType> parse_type(std::string_view t) {
 
 std::size_t type_size(PlyType t) {
   switch (t) {
-    case PlyType::I8: case PlyType::U8: return 1;
-    case PlyType::I16: case PlyType::U16: return 2;
-    case PlyType::I32: case PlyType::U32: case PlyType::F32: return 4;
+    case PlyType::I8:
+    case PlyType::U8: return 1;
+    case PlyType::I16:
+    case PlyType::U16: return 2;
+    case PlyType::I32:
+    case PlyType::U32:
+    case PlyType::F32: return 4;
     case PlyType::F64: return 8;
   }
   return 0;
@@ -155,7 +159,8 @@ class AsciiSource {
     if (!s_.more_on_line()) s_.fail("expected " + std::string(what) + ", found end of line");
   }
   void end_record() {
-    if (s_.more_on_line()) s_.fail("unexpected extra value " + io_detail::quote(s_.token()) + " at the end of the record");
+    if (s_.more_on_line())
+      s_.fail("unexpected extra value " + io_detail::quote(s_.token()) + " at the end of the record");
     s_.next_line();
   }
 
@@ -196,10 +201,14 @@ PlyHeader parse_header(TextScanner& s) {
     }
     if (kw == "format") {
       const std::string_view f = s.more_on_line() ? s.token() : std::string_view{};
-      if (f == "ascii") h.format = PlyFormat::Ascii;
-      else if (f == "binary_little_endian") h.format = PlyFormat::BinaryLittle;
-      else if (f == "binary_big_endian") h.format = PlyFormat::BinaryBig;
-      else s.fail("unknown PLY format " + io_detail::quote(f));
+      if (f == "ascii")
+        h.format = PlyFormat::Ascii;
+      else if (f == "binary_little_endian")
+        h.format = PlyFormat::BinaryLittle;
+      else if (f == "binary_big_endian")
+        h.format = PlyFormat::BinaryBig;
+      else
+        s.fail("unknown PLY format " + io_detail::quote(f));
       have_format = true;
     } else if (kw == "element") {
       PlyElement e;
@@ -254,9 +263,12 @@ class PlyBody {
       src_.fail("too many vertices (" + std::to_string(vertex_count) + ")");
     for (const PlyElement& e : h_.elements) {
       check_fits(e);
-      if (e.name == "vertex") read_vertices(e);
-      else if (e.name == "face") read_faces(e, vertex_count, have_vertices);
-      else skip_element(e);
+      if (e.name == "vertex")
+        read_vertices(e);
+      else if (e.name == "face")
+        read_faces(e, vertex_count, have_vertices);
+      else
+        skip_element(e);
     }
     if (!src_.at_end())
       src_.fail("unexpected " + src_.trailing_description() + " after the last element the header declares");
@@ -276,8 +288,8 @@ class PlyBody {
     if (e.count == 0) return;
     if (e.props.empty()) src_.fail("element '" + std::string(e.name) + "' has records but no properties");
     if (e.count - 1 > src_.remaining() / min_record)
-      src_.fail("header declares " + std::to_string(e.count) + " '" + std::string(e.name) +
-                "' elements but only " + std::to_string(src_.remaining()) + " bytes remain");
+      src_.fail("header declares " + std::to_string(e.count) + " '" + std::string(e.name) + "' elements but only " +
+                std::to_string(src_.remaining()) + " bytes remain");
   }
 
   void read_vertices(const PlyElement& e) {
@@ -297,10 +309,14 @@ class PlyBody {
       double xyz[3] = {0, 0, 0};
       for (std::size_t i = 0; i < e.props.size(); ++i) {
         const PlyProperty& p = e.props[i];
-        const int a = static_cast<int>(i) == axis_prop[0] ? 0 : static_cast<int>(i) == axis_prop[1] ? 1
-                    : static_cast<int>(i) == axis_prop[2] ? 2 : -1;
-        if (a >= 0) xyz[a] = src_.real(p.type, kAxisWhat[a]);
-        else skip_property(p);
+        const int a = static_cast<int>(i) == axis_prop[0]   ? 0
+                      : static_cast<int>(i) == axis_prop[1] ? 1
+                      : static_cast<int>(i) == axis_prop[2] ? 2
+                                                            : -1;
+        if (a >= 0)
+          xyz[a] = src_.real(p.type, kAxisWhat[a]);
+        else
+          skip_property(p);
       }
       src_.end_record();
       mesh_.vertices[v] = {xyz[0], xyz[1], xyz[2]};
@@ -312,8 +328,7 @@ class PlyBody {
     for (std::size_t i = 0; i < e.props.size(); ++i)
       if (e.props[i].is_list && (e.props[i].name == "vertex_indices" || e.props[i].name == "vertex_index"))
         list_prop = static_cast<int>(i);
-    if (list_prop < 0)
-      src_.fail("face element has no 'vertex_indices' or 'vertex_index' list property");
+    if (list_prop < 0) src_.fail("face element has no 'vertex_indices' or 'vertex_index' list property");
     if (!is_integral(e.props[list_prop].type)) src_.fail("face indices must have an integer type");
     if (!have_vertices && e.count > 0) src_.fail("faces but no 'vertex' element");
     mesh_.face_offsets.reserve(e.count + 1);
@@ -326,12 +341,13 @@ class PlyBody {
           continue;
         }
         const std::int64_t n = src_.integer(p.count_type, "face vertex count");
-        if (n < 3) src_.fail("face " + std::to_string(f) + " has " + std::to_string(n) + " vertices (at least 3 needed)");
+        if (n < 3)
+          src_.fail("face " + std::to_string(f) + " has " + std::to_string(n) + " vertices (at least 3 needed)");
         for (std::int64_t k = 0; k < n; ++k) {
           const std::int64_t idx = src_.integer(p.type, "face index");
           if (idx < 0 || static_cast<std::uint64_t>(idx) >= vertex_count)
-            src_.fail("face index " + std::to_string(idx) + " out of range (file has " +
-                      std::to_string(vertex_count) + " vertices)");
+            src_.fail("face index " + std::to_string(idx) + " out of range (file has " + std::to_string(vertex_count) +
+                      " vertices)");
           mesh_.indices.push_back(static_cast<std::uint32_t>(idx));
         }
         if (mesh_.indices.size() > std::numeric_limits<std::uint32_t>::max()) src_.fail("too many face indices");
@@ -356,7 +372,7 @@ class PlyBody {
   }
 
   static constexpr std::string_view kAxisWhat[3] = {"vertex x coordinate", "vertex y coordinate",
-                                                     "vertex z coordinate"};
+                                                    "vertex z coordinate"};
   const PlyHeader& h_;
   Source& src_;
   Mesh mesh_;
@@ -411,8 +427,10 @@ std::string write_ply(const Mesh& mesh, std::span<const Provenance> provenance) 
   };
   for (const Vec3d& v : mesh.vertices) put(v.x), put(v.y), put(v.z);
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
-    if (wide_count) put(static_cast<std::uint32_t>(mesh.face_size(f)));
-    else put(static_cast<std::uint8_t>(mesh.face_size(f)));
+    if (wide_count)
+      put(static_cast<std::uint32_t>(mesh.face_size(f)));
+    else
+      put(static_cast<std::uint8_t>(mesh.face_size(f)));
     for (std::uint32_t i : mesh.face(f)) put(i);
     if (sources) put(provenance[f].operand), put(provenance[f].face);
   }

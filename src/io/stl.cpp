@@ -195,7 +195,8 @@ class AsciiStlReader {
       } else if (iequals(tok, "endloop")) {
         break;
       } else {
-        s_.fail("expected 'vertex' or 'endloop', found " + (tok.empty() ? std::string("end of file") : io_detail::quote(tok)));
+        s_.fail("expected 'vertex' or 'endloop', found " +
+                (tok.empty() ? std::string("end of file") : io_detail::quote(tok)));
       }
     }
     if (face_.size() < 3) s_.fail("facet has " + std::to_string(face_.size()) + " vertices (at least 3 needed)");
@@ -245,7 +246,8 @@ std::string write_stl(const Mesh& mesh) {
   };
   const auto put_f32 = [&](double v) {
     const float f = static_cast<float>(v);
-    if (!std::isfinite(f)) throw Error("cannot write STL: coordinate " + std::to_string(v) + " does not fit in a float");
+    if (!std::isfinite(f))
+      throw Error("cannot write STL: coordinate " + std::to_string(v) + " does not fit in a float");
     put_u32(std::bit_cast<std::uint32_t>(f));
   };
   put_u32(static_cast<std::uint32_t>(triangles));

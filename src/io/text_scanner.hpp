@@ -25,8 +25,12 @@ class TextScanner {
   /// spread over lines (OFF, PLY, STL); otherwise the scanner stays on the
   /// current line and a '#' ends it (OBJ).
   TextScanner(std::string_view text, std::string_view name, bool multiline, char comment)
-      : begin_(text.data()), p_(text.data()), end_(text.data() + text.size()), name_(name),
-        multiline_(multiline), comment_(comment) {}
+      : begin_(text.data()),
+        p_(text.data()),
+        end_(text.data() + text.size()),
+        name_(name),
+        multiline_(multiline),
+        comment_(comment) {}
 
   [[noreturn]] void fail(std::string_view what) const { fail_at_line(name_, line_, what); }
   std::size_t line() const { return line_; }
@@ -124,9 +128,7 @@ class TextScanner {
     return true;
   }
 
-  static bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
-  }
+  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
 
  private:
   bool continuation() {
@@ -142,7 +144,8 @@ class TextScanner {
     p_ = nl ? static_cast<const char*>(nl) : end_;
   }
   const char* start_value(std::string_view what) {
-    if (at_line_end()) fail(std::string("expected ").append(what).append(p_ == end_ ? ", found end of file" : ", found end of line"));
+    if (at_line_end())
+      fail(std::string("expected ").append(what).append(p_ == end_ ? ", found end of file" : ", found end of line"));
     // from_chars rejects a leading '+', which some exporters write.
     if (*p_ == '+' && p_ + 1 != end_ && *(p_ + 1) != '-' && *(p_ + 1) != '+') ++p_;
     return p_;

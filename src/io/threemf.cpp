@@ -41,7 +41,8 @@ void check(LIB3MFRESULT result, NMR::PLib3MFBase* instance, std::string_view nam
 
 Handle new_model() {
   NMR::PLib3MFModel* model = nullptr;
-  if (NMR::lib3mf_createmodel(&model) != 0 || !model) throw Error("3MF: lib3mf could not create a model (out of memory?)");
+  if (NMR::lib3mf_createmodel(&model) != 0 || !model)
+    throw Error("3MF: lib3mf could not create a model (out of memory?)");
   return Handle(model);
 }
 
@@ -86,7 +87,8 @@ void flatten(NMR::PLib3MFModelObjectResource* object, const Affine& to_world, Me
     check(NMR::lib3mf_meshobject_gettrianglecount(object, &nt), object, name, "triangle count");
     std::vector<NMR::MODELMESHVERTEX> vertices(nv);
     std::vector<NMR::MODELMESHTRIANGLE> triangles(nt);
-    if (nv) check(NMR::lib3mf_meshobject_getvertices(object, vertices.data(), nv, nullptr), object, name, "reading vertices");
+    if (nv)
+      check(NMR::lib3mf_meshobject_getvertices(object, vertices.data(), nv, nullptr), object, name, "reading vertices");
     if (nt)
       check(NMR::lib3mf_meshobject_gettriangleindices(object, triangles.data(), nt, nullptr), object, name,
             "reading triangles");
@@ -142,8 +144,8 @@ void add_object(NMR::PLib3MFModel* model, const Mesh& mesh) {
   // lib3mf rejects empty geometry arrays; an empty result is an object without triangles.
   if (!vertices.empty())
     check(NMR::lib3mf_meshobject_setgeometry(object_raw, vertices.data(), static_cast<DWORD>(vertices.size()),
-                                           triangles.data(), static_cast<DWORD>(triangles.size())),
-        object_raw, "output", "setting the geometry");
+                                             triangles.data(), static_cast<DWORD>(triangles.size())),
+          object_raw, "output", "setting the geometry");
   NMR::PLib3MFModelBuildItem* item_raw = nullptr;
   check(NMR::lib3mf_model_addbuilditem(model, object_raw, nullptr, &item_raw), model, "output",
         "adding the build item");
@@ -196,8 +198,8 @@ std::string write_3mf(std::span<const Mesh> meshes) {
   ULONG64 size = 0;
   check(NMR::lib3mf_writer_getstreamsize(writer_raw, &size), writer_raw, "output", "sizing the package");
   std::string bytes(static_cast<std::size_t>(size), '\0');
-  check(NMR::lib3mf_writer_writetobuffer(writer_raw, reinterpret_cast<BYTE*>(bytes.data()), size), writer_raw,
-        "output", "writing the package");
+  check(NMR::lib3mf_writer_writetobuffer(writer_raw, reinterpret_cast<BYTE*>(bytes.data()), size), writer_raw, "output",
+        "writing the package");
   return bytes;
 }
 

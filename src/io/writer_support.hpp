@@ -36,9 +36,7 @@ inline void append_uint(std::string& out, std::uint64_t v) {
 }
 
 inline void check_mesh_for_writing(const Mesh& mesh, std::string_view format) {
-  const auto fail = [&](const std::string& what) {
-    throw Error("cannot write " + std::string(format) + ": " + what);
-  };
+  const auto fail = [&](const std::string& what) { throw Error("cannot write " + std::string(format) + ": " + what); };
   if (mesh.face_offsets.empty() || mesh.face_offsets.front() != 0) fail("face_offsets must start with 0");
   if (mesh.face_offsets.back() != mesh.indices.size())
     fail("face_offsets ends at " + std::to_string(mesh.face_offsets.back()) + " but there are " +

@@ -55,9 +55,10 @@ inline double to_double(i128 v) {
 inline double approx_to_double(i128 v) {
   assert(v != static_cast<i128>(static_cast<u128>(1) << 127));
   const u128 m = v < 0 ? -static_cast<u128>(v) : static_cast<u128>(v);
-  const double r = (m >> 63) == 0 ? static_cast<double>(static_cast<std::int64_t>(m))
-                                  : static_cast<double>(static_cast<std::int64_t>(m >> 64)) * 0x1p64 +
-                                        static_cast<double>(static_cast<std::int64_t>(static_cast<std::uint64_t>(m) >> 1)) * 2.0;
+  const double r = (m >> 63) == 0
+                       ? static_cast<double>(static_cast<std::int64_t>(m))
+                       : static_cast<double>(static_cast<std::int64_t>(m >> 64)) * 0x1p64 +
+                             static_cast<double>(static_cast<std::int64_t>(static_cast<std::uint64_t>(m) >> 1)) * 2.0;
   return v < 0 ? -r : r;
 }
 
@@ -324,7 +325,8 @@ constexpr Int<A + B> operator*(const Int<A>& a, const Int<B>& b) {
     std::array<std::uint64_t, LR> out{};
     i128 carry = 0;
     for (int j = 0; j < LB; ++j) {
-      const i128 limb = j + 1 < LB ? static_cast<i128>(b.limb(j)) : static_cast<i128>(static_cast<std::int64_t>(b.limb(j)));
+      const i128 limb =
+          j + 1 < LB ? static_cast<i128>(b.limb(j)) : static_cast<i128>(static_cast<std::int64_t>(b.limb(j)));
       const i128 t = x * limb + carry;
       out[j] = static_cast<std::uint64_t>(t);
       carry = t >> 64;  // arithmetic: floor

@@ -41,8 +41,10 @@ ember::Mesh to_mesh(py::handle obj, const std::string& what) {
     vertices = obj.attr("vertices");
     faces = obj.attr("faces");
   } else {
-    throw py::type_error(what + ": expected a (vertices, faces) pair or an object with .vertices and .faces "
-                                "(e.g. trimesh.Trimesh), got " + std::string(py::str(py::type::of(obj))));
+    throw py::type_error(what +
+                         ": expected a (vertices, faces) pair or an object with .vertices and .faces "
+                         "(e.g. trimesh.Trimesh), got " +
+                         std::string(py::str(py::type::of(obj))));
   }
   const auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(vertices);
   if (!v || v.ndim() != 2 || v.shape(1) != 3)
@@ -117,9 +119,14 @@ py::dict stats_dict(const ember::BooleanStats& s) {
   d["fallback_regions"] = s.fallback_regions;
   d["rounded_degenerate"] = s.rounded_degenerate;
   d["time_ms"] = s.time_ms;
-  for (const auto& [name, ms] : {std::pair{"setup_ms", s.setup_ms}, {"proof_ms", s.proof_ms}, {"solve_ms", s.solve_ms},
-                                 {"output_ms", s.output_ms}, {"weld_ms", s.weld_ms}, {"tjunction_ms", s.tjunction_ms},
-                                 {"regions_ms", s.regions_ms}, {"triangulate_ms", s.triangulate_ms}})
+  for (const auto& [name, ms] : {std::pair{"setup_ms", s.setup_ms},
+                                 {"proof_ms", s.proof_ms},
+                                 {"solve_ms", s.solve_ms},
+                                 {"output_ms", s.output_ms},
+                                 {"weld_ms", s.weld_ms},
+                                 {"tjunction_ms", s.tjunction_ms},
+                                 {"regions_ms", s.regions_ms},
+                                 {"triangulate_ms", s.triangulate_ms}})
     d[name] = ms;
   d["threads"] = s.threads;
   return d;
@@ -131,12 +138,18 @@ py::tuple run_boolean(ember::Operation op, const py::args& meshes, const py::kwa
   bool want_provenance = false, want_stats = false;
   for (const auto& [key, value] : kwargs) {
     const std::string k = py::str(key);
-    if (k == "threads") options.threads = value.cast<int>();
-    else if (k == "allow_open") options.allow_open = value.cast<bool>();
-    else if (k == "assume_solid") options.all_solid = value.cast<bool>();
-    else if (k == "detect_solid") options.detect_solid = value.cast<bool>();
-    else if (k == "return_provenance") want_provenance = value.cast<bool>();
-    else if (k == "return_stats") want_stats = value.cast<bool>();
+    if (k == "threads")
+      options.threads = value.cast<int>();
+    else if (k == "allow_open")
+      options.allow_open = value.cast<bool>();
+    else if (k == "assume_solid")
+      options.all_solid = value.cast<bool>();
+    else if (k == "detect_solid")
+      options.detect_solid = value.cast<bool>();
+    else if (k == "return_provenance")
+      want_provenance = value.cast<bool>();
+    else if (k == "return_stats")
+      want_stats = value.cast<bool>();
     else if (k == "min_k" && op == ember::Operation::Union) {
       if (!value.is_none()) {
         op = ember::Operation::AtLeastK;
@@ -150,7 +163,8 @@ py::tuple run_boolean(ember::Operation op, const py::args& meshes, const py::kwa
   }
   std::vector<ember::Mesh> operands;
   operands.reserve(meshes.size());
-  for (std::size_t i = 0; i < meshes.size(); ++i) operands.push_back(to_mesh(meshes[i], "operand " + std::to_string(i)));
+  for (std::size_t i = 0; i < meshes.size(); ++i)
+    operands.push_back(to_mesh(meshes[i], "operand " + std::to_string(i)));
 
   ember::BooleanResult r;
   {
@@ -203,8 +217,9 @@ PYBIND11_MODULE(ember, m) {
                       Op{"difference", ember::Operation::Difference, "Inside the first mesh and outside all others. "},
                       Op{"xor", ember::Operation::Xor, "Inside an odd number of meshes. "}}) {
     const ember::Operation op = o.op;
-    m.def(o.name, [op](const py::args& a, const py::kwargs& k) { return run_boolean(op, a, k); },
-          (std::string(o.what) + options_doc).c_str());
+    m.def(
+        o.name, [op](const py::args& a, const py::kwargs& k) { return run_boolean(op, a, k); },
+        (std::string(o.what) + options_doc).c_str());
   }
 
   m.def(
@@ -253,7 +268,7 @@ PYBIND11_MODULE(ember, m) {
         ember::write_mesh(m, path, sources);
       },
       py::arg("path"), py::arg("mesh"), py::arg("provenance") = py::none(),
-"write(path, mesh, provenance=None): writes a (vertices, faces) pair or trimesh-like object; the format follows "
+      "write(path, mesh, provenance=None): writes a (vertices, faces) pair or trimesh-like object; the format follows "
       "the extension. provenance ((m, 2) [operand, face] per face, as returned by return_provenance=True) is stored "
       "as PLY face properties operand and source_face; other formats leave it out.");
 }

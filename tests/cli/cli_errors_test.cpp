@@ -60,8 +60,8 @@ TEST(CliGrid, ManifoldCrayPairIsAnErrorNotAnEmptyResult) {
   if (!fs::exists(data / "Cray_left.obj") || !fs::exists(data / "Cray_right.obj"))
     GTEST_SKIP() << "real meshes not found under " << data << " (../shared/data beside the checkout)";
   TempDir dir;
-  const RunResult r = run_cli(dir, {"difference", (data / "Cray_left.obj").string(),
-                                    (data / "Cray_right.obj").string(), "-o", "out.obj"});
+  const RunResult r = run_cli(
+      dir, {"difference", (data / "Cray_left.obj").string(), (data / "Cray_right.obj").string(), "-o", "out.obj"});
   EXPECT_EQ(r.exit_code, 1) << describe(r);
   EXPECT_TRUE(has(r.err, "Cray_left.obj: 576 of its 576 triangles collapse")) << describe(r);
   EXPECT_FALSE(fs::exists(dir / "out.obj"));
@@ -69,8 +69,8 @@ TEST(CliGrid, ManifoldCrayPairIsAnErrorNotAnEmptyResult) {
 
 TEST(CliGrid, SubGridFeatureWarnsAndCountsInStats) {
   TempDir dir;
-  const Mesh a = ember::test::merge({ember::test::icosphere({0, 0, 0}, 1.0, 3),
-                                     box({0.1, 0.1, 0.1}, {0.1 + 1e-9, 0.1 + 1e-9, 0.1 + 1e-9})});
+  const Mesh a = ember::test::merge(
+      {ember::test::icosphere({0, 0, 0}, 1.0, 3), box({0.1, 0.1, 0.1}, {0.1 + 1e-9, 0.1 + 1e-9, 0.1 + 1e-9})});
   const std::string in_a = write_input(dir, "a.obj", a), in_b = write_input(dir, "b.obj", box({0, 0, 0}, {2, 2, 2}));
   const RunResult r = run_cli(dir, {"union", in_a, in_b, "-o", "out.obj", "--stats"});
   ASSERT_EQ(r.exit_code, 0) << describe(r);
@@ -147,9 +147,8 @@ TEST(CliOutputFile, SignalWhileTheTemporaryFileExistsRemovesIt) {
     std::string cmd = "cd " + shell_quote(dir.work().string()) + " && (EMBER_TEST_HOLD_TEMP_MS=20000 " +
                       shell_quote(cli_path()) + " union a.obj b.obj -o out.obj & pid=$!; " +
                       "for i in $(seq 100); do ls -a | grep -q ember- && break; sleep 0.1; done; " +
-                      "ls -a | grep -c ember- > " + shell_quote((dir.io() / "seen.txt").string()) +
-                      "; kill -" + sig + " $pid; wait $pid; echo $? > " +
-                      shell_quote((dir.io() / "rc.txt").string()) + ")";
+                      "ls -a | grep -c ember- > " + shell_quote((dir.io() / "seen.txt").string()) + "; kill -" + sig +
+                      " $pid; wait $pid; echo $? > " + shell_quote((dir.io() / "rc.txt").string()) + ")";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
     EXPECT_EQ(read_file(dir.io() / "seen.txt"), "1\n") << "the temporary file was never seen";
     EXPECT_NE(read_file(dir.io() / "rc.txt"), "0\n");

@@ -59,8 +59,8 @@ void expect_file_error(const RunResult& r, const std::string& file) {
   EXPECT_FALSE(r.signaled) << describe(r);
   const auto lines = lines_of(r.err);
   ASSERT_EQ(lines.size(), 1u) << "expected one error line\n" << describe(r);
-  EXPECT_EQ(lines[0].rfind("ember: " + file + ":", 0), 0u)
-      << "error line should start with 'ember: " << file << ":'\n" << describe(r);
+  EXPECT_EQ(lines[0].rfind("ember: " + file + ":", 0), 0u) << "error line should start with 'ember: " << file << ":'\n"
+                                                           << describe(r);
 }
 
 /// A usage error: exit 2, a non-empty message on stderr.
@@ -292,7 +292,8 @@ TEST(Cli, StatsPrintsOneJsonObjectOnStderr) {
     ASSERT_EQ(lines.size(), 1u) << describe(r);
     const std::string& j = lines[0];
     // Shape of a flat JSON object with string or number values.
-    const std::regex object(R"(^\{\s*"[a-z_]+"\s*:\s*("[^"]*"|-?[0-9.eE+-]+)(\s*,\s*"[a-z_]+"\s*:\s*("[^"]*"|-?[0-9.eE+-]+))*\s*\}$)");
+    const std::regex object(
+        R"(^\{\s*"[a-z_]+"\s*:\s*("[^"]*"|-?[0-9.eE+-]+)(\s*,\s*"[a-z_]+"\s*:\s*("[^"]*"|-?[0-9.eE+-]+))*\s*\}$)");
     EXPECT_TRUE(std::regex_match(j, object)) << j;
     EXPECT_NE(j.find("\"operation\": \"union\""), std::string::npos) << j;
     EXPECT_EQ(json_number(j, "input_triangles"), 24) << j;
@@ -632,8 +633,8 @@ TEST(Cli, DemoWritesConsistentBooleans) {
   // Exactly the five meshes, no temporaries.
   std::set<std::string> files;
   for (const auto& e : fs::directory_iterator(demo)) files.insert(e.path().filename().string());
-  EXPECT_EQ(files, (std::set<std::string>{"torus.obj", "sphere.obj", "union.obj", "intersection.obj",
-                                          "difference.obj"}));
+  EXPECT_EQ(files,
+            (std::set<std::string>{"torus.obj", "sphere.obj", "union.obj", "intersection.obj", "difference.obj"}));
   EXPECT_TRUE(ember::test::closed_oriented(m["torus"]));
   EXPECT_TRUE(ember::test::closed_oriented(m["sphere"]));
   const double vt = volume(m["torus"]), vs = volume(m["sphere"]);
@@ -664,7 +665,8 @@ TEST(Cli, HelpMentionsEverySubcommand) {
   // Subcommand help lists the options.
   const RunResult u = run_cli(dir, {"union", "--help"});
   ASSERT_EQ(u.exit_code, 0) << describe(u);
-  for (const char* opt : {"--min-k", "--threads", "--stats", "--allow-open", "--assume-solid", "--no-solid-check", "-o"})
+  for (const char* opt :
+       {"--min-k", "--threads", "--stats", "--allow-open", "--assume-solid", "--no-solid-check", "-o"})
     EXPECT_NE(u.out.find(opt), std::string::npos) << opt << "\n" << describe(u);
 }
 

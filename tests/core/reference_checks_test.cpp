@@ -35,8 +35,8 @@ TEST(SupportShapes, BoxesAreClosedOutwardAndExact) {
 TEST(SupportChecks, TjunctionVerticesFindsAVertexInsideATwiceUsedEdge) {
   EXPECT_EQ(tjunction_vertices(box({0, 0, 0}, {1, 2, 3})), 0u);
   Mesh m;
-  for (const Vec3d p : {Vec3d{0, 0, 0}, Vec3d{2, 0, 0}, Vec3d{0, 2, 0}, Vec3d{1, 0, 0}, Vec3d{0, 0, 2},
-                        Vec3d{1, 0, 5}, Vec3d{2, 1, 5}, Vec3d{2, 0, 1}})
+  for (const Vec3d p : {Vec3d{0, 0, 0}, Vec3d{2, 0, 0}, Vec3d{0, 2, 0}, Vec3d{1, 0, 0}, Vec3d{0, 0, 2}, Vec3d{1, 0, 5},
+                        Vec3d{2, 1, 5}, Vec3d{2, 0, 1}})
     m.add_vertex(p);
   m.add_face({0, 1, 2});
   m.add_face({1, 0, 4});  // edge {0, 1} used twice, vertex 3 = (1, 0, 0) in its middle
@@ -147,7 +147,8 @@ TEST(SupportTransforms, TransformsActOnVolume) {
 }
 
 TEST(SupportTransforms, SnapToGridIsDyadicAndCoarse) {
-  std::vector<Mesh> ms{rotate(icosphere({0, 0, 0}, 1.0, 2), random_rotation(3)), translate(icosphere({0, 0, 0}, 1.0, 2), {0.3, 0, 0})};
+  std::vector<Mesh> ms{rotate(icosphere({0, 0, 0}, 1.0, 2), random_rotation(3)),
+                       translate(icosphere({0, 0, 0}, 1.0, 2), {0.3, 0, 0})};
   double h = snap_step(max_abs_coordinate(ms));
   EXPECT_EQ(h, std::ldexp(1.0, 1 - 21));  // max |x| = 1.3 -> 2^1
   auto s = snapped(ms);
@@ -193,15 +194,24 @@ TEST(SupportWinding, WindingNumbersOfSimpleConfigurations) {
   // A T-junction soup: a 2x1x1 box whose +y face is split at x = 1 while the
   // other faces are not; still winding number 1 inside.
   Mesh tj;
-  for (Vec3d p : {Vec3d{0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {2, 1, 0}, {0, 0, 1}, {2, 0, 1}, {0, 1, 1}, {2, 1, 1}, {1, 1, 0}, {1, 1, 1}})
+  for (Vec3d p : {Vec3d{0, 0, 0},
+                  {2, 0, 0},
+                  {0, 1, 0},
+                  {2, 1, 0},
+                  {0, 0, 1},
+                  {2, 0, 1},
+                  {0, 1, 1},
+                  {2, 1, 1},
+                  {1, 1, 0},
+                  {1, 1, 1}})
     tj.add_vertex(p);
-  tj.add_face({0, 4, 6, 2});      // -x
-  tj.add_face({1, 3, 7, 5});      // +x
-  tj.add_face({0, 1, 5, 4});      // -y
-  tj.add_face({2, 6, 9, 8});      // +y, left half
-  tj.add_face({8, 9, 7, 3});      // +y, right half
-  tj.add_face({0, 2, 3, 1});      // -z
-  tj.add_face({4, 5, 7, 6});      // +z
+  tj.add_face({0, 4, 6, 2});  // -x
+  tj.add_face({1, 3, 7, 5});  // +x
+  tj.add_face({0, 1, 5, 4});  // -y
+  tj.add_face({2, 6, 9, 8});  // +y, left half
+  tj.add_face({8, 9, 7, 3});  // +y, right half
+  tj.add_face({0, 2, 3, 1});  // -z
+  tj.add_face({4, 5, 7, 6});  // +z
   EXPECT_NEAR(winding_number(tj, {0.5, 0.5, 0.5}), 1.0, 1e-12);
   EXPECT_NEAR(winding_number(tj, {1.5, 0.5, 0.5}), 1.0, 1e-12);
   EXPECT_EQ(volume(tj), 2.0);
@@ -227,7 +237,8 @@ TEST(SupportChecks, FaceProblemsAreDetected) {
   z.add_face({0, 1, 2});  // collinear: zero area
   EXPECT_NE(face_problems(z), "");
   Mesh nc;
-  nc.add_vertex({0, 0, 0}), nc.add_vertex({2, 0, 0}), nc.add_vertex({1, 0.5, 0}), nc.add_vertex({2, 2, 0}), nc.add_vertex({0, 2, 0});
+  nc.add_vertex({0, 0, 0}), nc.add_vertex({2, 0, 0}), nc.add_vertex({1, 0.5, 0}), nc.add_vertex({2, 2, 0}),
+      nc.add_vertex({0, 2, 0});
   nc.add_face({0, 1, 2, 3, 4});  // reflex vertex at index 2
   EXPECT_EQ(face_problems(nc), "");
   EXPECT_NE(face_problems(nc, 0), "");

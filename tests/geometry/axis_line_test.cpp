@@ -47,7 +47,8 @@ TEST(AxisLine, MatchesGeneralSegmentTestOnRandomTriangles) {
   std::uniform_int_distribution<std::int64_t> coord(-L, L);
   int interior = 0, boundary = 0, endpoint = 0;
   for (int it = 0; it < 4000; ++it) {
-    const IntPoint p[3] = {{coord(rng), coord(rng), coord(rng)}, {coord(rng), coord(rng), coord(rng)},
+    const IntPoint p[3] = {{coord(rng), coord(rng), coord(rng)},
+                           {coord(rng), coord(rng), coord(rng)},
                            {coord(rng), coord(rng), coord(rng)}};
     const std::optional<Polygon> tri = make_triangle(p[0], p[1], p[2]);
     if (!tri) continue;
@@ -87,9 +88,9 @@ TEST(AxisLine, FilteredClassifyMatchesExactNearPlanes) {
   std::uniform_int_distribution<std::int64_t> coord(-L, L);
   int checked = 0;
   for (int it = 0; it < 3000; ++it) {
-    const std::optional<Plane> s = supporting_plane({coord(rng), coord(rng), coord(rng)},
-                                                    {coord(rng), coord(rng), coord(rng)},
-                                                    {coord(rng), coord(rng), coord(rng)});
+    const std::optional<Plane> s =
+        supporting_plane({coord(rng), coord(rng), coord(rng)}, {coord(rng), coord(rng), coord(rng)},
+                         {coord(rng), coord(rng), coord(rng)});
     if (!s) continue;
     const int shift = static_cast<int>(rng() % 53);
     const AxisLine line{static_cast<int>(rng() % 3), DyadicNum(static_cast<__int128>(coord(rng)) << shift),
@@ -174,14 +175,14 @@ TEST(AxisLine, ParallelAndInPlaneLines) {
                 .kind,
             LineHit::Miss);
   // Along z through (1/4, 1/4): interior; through (6, 6): the hypotenuse.
-  EXPECT_EQ(intersect_segment(AxisLine{2, DyadicNum(1), DyadicNum(1), 2}, -dyadic_plane(2, -8, 2),
-                              dyadic_plane(2, 8, 2), tri)
-                .kind,
-            LineHit::Interior);
-  EXPECT_EQ(intersect_segment(AxisLine{2, DyadicNum(6), DyadicNum(6), 0}, -dyadic_plane(2, -8, 0),
-                              dyadic_plane(2, 8, 0), tri)
-                .kind,
-            LineHit::Boundary);
+  EXPECT_EQ(
+      intersect_segment(AxisLine{2, DyadicNum(1), DyadicNum(1), 2}, -dyadic_plane(2, -8, 2), dyadic_plane(2, 8, 2), tri)
+          .kind,
+      LineHit::Interior);
+  EXPECT_EQ(
+      intersect_segment(AxisLine{2, DyadicNum(6), DyadicNum(6), 0}, -dyadic_plane(2, -8, 0), dyadic_plane(2, 8, 0), tri)
+          .kind,
+      LineHit::Boundary);
 }
 
 }  // namespace

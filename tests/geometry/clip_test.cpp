@@ -55,13 +55,15 @@ TEST(GeometryClip, RandomTrianglesByCuttingAxisPlanes) {
   Polygon neg, pos;
   int both = 0;
   for (int i = 0; i < 3000; ++i) {
-    const auto t = (i % 3) ? g.triangle() : std::array<IntPoint, 3>{g.small_point(6), g.small_point(6), g.small_point(6)};
+    const auto t =
+        (i % 3) ? g.triangle() : std::array<IntPoint, 3>{g.small_point(6), g.small_point(6), g.small_point(6)};
     const auto tri = make_triangle(t[0], t[1], t[2]);
     if (!tri) continue;
     const int axis = static_cast<int>(g.uniform(0, 2));
     const std::int64_t c[3] = {(&t[0].x)[axis], (&t[1].x)[axis], (&t[2].x)[axis]};
     // Positions within the triangle's extent, including exactly through vertices.
-    const std::int64_t pos_at = (i % 4 == 0) ? c[i % 3] : g.uniform(*std::min_element(c, c + 3), *std::max_element(c, c + 3));
+    const std::int64_t pos_at =
+        (i % 4 == 0) ? c[i % 3] : g.uniform(*std::min_element(c, c + 3), *std::max_element(c, c + 3));
     const Plane split = (i % 2) ? axis_plane(axis, pos_at) : -axis_plane(axis, pos_at);
     both += clip_and_check(*tri, split, neg, pos) == ClipSide::Both;
   }
@@ -141,7 +143,7 @@ TEST(GeometryClip, PlaneCuttingTwoEdgesGivesQuadAndTriangle) {
 TEST(GeometryClip, PlaneThroughTwoVerticesOrTouchingDoesNotSplit) {
   const auto tri = make_triangle({0, 0, 0}, {10, 0, 0}, {0, 10, 0});
   Polygon neg, pos;
-  EXPECT_EQ(clip_and_check(*tri, axis_plane(1, 0), neg, pos), ClipSide::Positive);   // contains edge 0
+  EXPECT_EQ(clip_and_check(*tri, axis_plane(1, 0), neg, pos), ClipSide::Positive);  // contains edge 0
   EXPECT_EQ(clip_and_check(*tri, -axis_plane(1, 0), neg, pos), ClipSide::Negative);
   EXPECT_EQ(clip_and_check(*tri, Plane{0, 1, 1, 0}, neg, pos), ClipSide::Positive);  // tilted about edge 0
   EXPECT_EQ(clip_and_check(*tri, axis_plane(0, 10), neg, pos), ClipSide::Negative);  // touches vertex 1

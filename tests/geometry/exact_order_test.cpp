@@ -183,7 +183,7 @@ TEST(ExactOrder, SamePointAcrossPlaneTriplesAndSubUlpNeighbours) {
     for (const int delta : {-1, 1}) {
       const std::vector<Point> near = line->meet(shifted(x, delta));
       for (std::size_t j = 0; j < near.size(); ++j) {
-            const Point &a = pts[j % pts.size()], &b = near[j];
+        const Point &a = pts[j % pts.size()], &b = near[j];
         const Rat3 qb = rational(b);
         ASSERT_NE(qb, q0);
         EXPECT_FALSE(same_point(a, b));
@@ -330,8 +330,8 @@ TEST(ExactOrder, Orient2dDroppedMatchesOracleOnRandomTriples) {
       EXPECT_EQ(orient2d_dropped(blind(p[1]), blind(p[2]), blind(p[1]), drop), 0);
       // Width of the homogeneous det [a_u a_v a_w; b_u b_v b_w; c_u c_v c_w] the exact branch evaluates.
       const int u = (drop + 1) % 3, v = (drop + 2) % 3;
-      max_bits = std::max(max_bits, bits_of(det3(m[0][u], m[0][v], m[0][3], m[1][u], m[1][v], m[1][3], m[2][u],
-                                                 m[2][v], m[2][3])));
+      max_bits = std::max(
+          max_bits, bits_of(det3(m[0][u], m[0][v], m[0][3], m[1][u], m[1][v], m[1][3], m[2][u], m[2][v], m[2][3])));
     }
   }
   EXPECT_LE(max_bits, Orient2Value::bits);

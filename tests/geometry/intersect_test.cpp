@@ -34,9 +34,10 @@ TEST_F(GeometryIntersect, LineInOrParallelToSupport) {
   Point hit = to_point({99, 99, 99});
   EXPECT_EQ(intersect_line(Z(0), X(2), tri, &hit), LineHit::InPlane);
   EXPECT_EQ(intersect_line(Z(0), X(50), tri, &hit), LineHit::InPlane);  // no overlap, still InPlane
-  EXPECT_EQ(intersect_line(Plane{1, 0, 1, 0}, Plane{1, 0, -1, 0}, tri, &hit), LineHit::InPlane);  // x = z = 0, as a pencil
-  EXPECT_EQ(intersect_line(Z(1), X(2), tri, &hit), LineHit::Miss);      // parallel, above
-  EXPECT_EQ(approx(hit)[0], 99.0);  // untouched
+  EXPECT_EQ(intersect_line(Plane{1, 0, 1, 0}, Plane{1, 0, -1, 0}, tri, &hit),
+            LineHit::InPlane);                                      // x = z = 0, as a pencil
+  EXPECT_EQ(intersect_line(Z(1), X(2), tri, &hit), LineHit::Miss);  // parallel, above
+  EXPECT_EQ(approx(hit)[0], 99.0);                                  // untouched
 }
 
 TEST_F(GeometryIntersect, SegmentBoundsAndEndpoints) {
@@ -64,7 +65,8 @@ TEST_F(GeometryIntersect, RandomLinesAgreeWithOracle) {
   Gen g(40);
   int counts[4] = {};
   for (int i = 0; i < 6000; ++i) {
-    const auto t = (i % 2) ? g.triangle() : std::array<IntPoint, 3>{g.small_point(9), g.small_point(9), g.small_point(9)};
+    const auto t =
+        (i % 2) ? g.triangle() : std::array<IntPoint, 3>{g.small_point(9), g.small_point(9), g.small_point(9)};
     const auto poly = make_triangle(t[0], t[1], t[2]);
     if (!poly) continue;
     // Lines of kinds AA (through a grid point near the triangle), SA, SE, EA,
@@ -75,7 +77,8 @@ TEST_F(GeometryIntersect, RandomLinesAgreeWithOracle) {
         const IntPoint c = t[g.uniform(0, 2)];
         const int ax = static_cast<int>(g.uniform(0, 2));
         l0 = axis_plane((ax + 1) % 3, (&c.x)[(ax + 1) % 3]);
-        l1 = axis_plane((ax + 2) % 3, std::clamp<std::int64_t>((&c.x)[(ax + 2) % 3] + g.uniform(-3, 3), -kCoordLimit, kCoordLimit));
+        l1 = axis_plane((ax + 2) % 3,
+                        std::clamp<std::int64_t>((&c.x)[(ax + 2) % 3] + g.uniform(-3, 3), -kCoordLimit, kCoordLimit));
         break;
       }
       case 1: l0 = g.plane('S'), l1 = g.plane('A'); break;

@@ -45,7 +45,7 @@ TEST(GeometryPlane, GridNormalMatchesOracleAtFullRange) {
   std::vector<std::array<IntPoint, 3>> tris = {
       {IntPoint{-L, -L, -L}, IntPoint{L, -L, L}, IntPoint{-L, L, L}},  // components reach 2^52
       {IntPoint{L, L, L}, IntPoint{-L, L, -L}, IntPoint{L, -L, -L}},
-      {IntPoint{-L, 0, L}, IntPoint{0, 0, 0}, IntPoint{L, 0, -L}},   // collinear
+      {IntPoint{-L, 0, L}, IntPoint{0, 0, 0}, IntPoint{L, 0, -L}},  // collinear
   };
   for (int i = 0; i < 20000; ++i) tris.push_back({g.point(), g.point(), g.point()});
   int max_bits = 0, zero = 0;
@@ -123,7 +123,8 @@ TEST(GeometryPlane, EdgePlanesHaveInteriorOnNegativeSide) {
   Gen g(2);
   int seen[3][2] = {};
   for (int i = 0; i < 20000; ++i) {
-    const auto t = (i % 2) ? g.triangle() : std::array<IntPoint, 3>{g.small_point(20), g.small_point(20), g.small_point(20)};
+    const auto t =
+        (i % 2) ? g.triangle() : std::array<IntPoint, 3>{g.small_point(20), g.small_point(20), g.small_point(20)};
     const auto s = supporting_plane(t[0], t[1], t[2]);
     if (!s) continue;
     const int k = dominant_axis(*s);

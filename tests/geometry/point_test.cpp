@@ -161,7 +161,8 @@ TEST(GeometryPoint, ClassifyAxisAgreesWithGeneralClassify) {
     for (int axis = 0; axis < 3; ++axis) {
       // Positions near the point (rounded Cartesian coordinate) and random ones.
       const double c = approx(*x)[axis];
-      const std::int64_t near = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::llround(c)), -kCoordLimit, kCoordLimit);
+      const std::int64_t near =
+          std::clamp<std::int64_t>(static_cast<std::int64_t>(std::llround(c)), -kCoordLimit, kCoordLimit);
       for (const std::int64_t pos : {near, g.coord()}) {
         const int s = classify_axis(*x, axis, pos);
         EXPECT_EQ(s, classify(*x, axis_plane(axis, pos)));

@@ -9,7 +9,8 @@ namespace {
 TEST(GeometryPolygon, RandomTrianglesSatisfyConventions) {
   Gen g(20);
   for (int i = 0; i < 3000; ++i) {
-    const auto t = (i % 2) ? g.triangle() : std::array<IntPoint, 3>{g.small_point(8), g.small_point(8), g.small_point(8)};
+    const auto t =
+        (i % 2) ? g.triangle() : std::array<IntPoint, 3>{g.small_point(8), g.small_point(8), g.small_point(8)};
     const auto poly = make_triangle(t[0], t[1], t[2]);
     if (!supporting_plane(t[0], t[1], t[2])) {
       EXPECT_FALSE(poly);
@@ -83,9 +84,9 @@ TEST(GeometryPolygon, LocateInsideBoundaryOutside) {
   ASSERT_TRUE(tri);
   auto at = [](std::int64_t x, std::int64_t y) { return to_point(IntPoint{x, y, 0}); };
   EXPECT_EQ(locate(*tri, at(1, 1)), -1);
-  EXPECT_EQ(locate(*tri, at(6, 6)), 0);   // hypotenuse
-  EXPECT_EQ(locate(*tri, at(0, 0)), 0);   // vertex
-  EXPECT_EQ(locate(*tri, at(4, 0)), 0);   // edge
+  EXPECT_EQ(locate(*tri, at(6, 6)), 0);  // hypotenuse
+  EXPECT_EQ(locate(*tri, at(0, 0)), 0);  // vertex
+  EXPECT_EQ(locate(*tri, at(4, 0)), 0);  // edge
   EXPECT_EQ(locate(*tri, at(7, 6)), 1);
   EXPECT_EQ(locate(*tri, at(-1, 3)), 1);
   // A rational point: (1/3, 1/3) via three planes 3x = 1, 3y = 1, z = 0.

@@ -18,12 +18,14 @@ TEST(ByteOrderMark, AcceptedBeforeEveryTextHeader) {
     EXPECT_TRUE(test::bit_identical(cube, back));
   }
   // ASCII PLY and ASCII STL too (the writers above produce binary PLY).
-  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                          "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                          "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   EXPECT_EQ(read_ply(kBom + ply, "a.ply").face_count(), 1u);
-  const std::string stl = "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
-                          "endloop\nendfacet\nendsolid a\n";
+  const std::string stl =
+      "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+      "endloop\nendfacet\nendsolid a\n";
   EXPECT_EQ(read_stl(kBom + stl, "a.stl").face_count(), 1u);
   // Only at the very start: elsewhere it is still malformed input.
   EXPECT_ERROR_HAS(read_obj("v 0 0 0\n" + kBom + "v 1 0 0\n", "mid.obj"), "mid.obj:2:");

@@ -56,11 +56,11 @@ std::string mutate(std::string s, std::mt19937& rng) {
   const int edits = 1 + static_cast<int>(pick(3));
   for (int e = 0; e < edits && !s.empty(); ++e) {
     switch (pick(4)) {
-      case 0: s[pick(s.size() - 1)] = static_cast<char>(pick(255)); break;                    // random byte
-      case 1: s[pick(s.size() - 1)] = kBytes[pick(sizeof kBytes - 1)]; break;                 // syntax byte
-      case 2: s.resize(pick(s.size())); break;                                               // truncate
-      case 3: s.insert(pick(s.size()), 1, kBytes[pick(sizeof kBytes - 1)]); break;            // insert
-      default: s.erase(pick(s.size() - 1), 1 + pick(8)); break;                              // delete run
+      case 0: s[pick(s.size() - 1)] = static_cast<char>(pick(255)); break;          // random byte
+      case 1: s[pick(s.size() - 1)] = kBytes[pick(sizeof kBytes - 1)]; break;       // syntax byte
+      case 2: s.resize(pick(s.size())); break;                                      // truncate
+      case 3: s.insert(pick(s.size()), 1, kBytes[pick(sizeof kBytes - 1)]); break;  // insert
+      default: s.erase(pick(s.size() - 1), 1 + pick(8)); break;                     // delete run
     }
   }
   return s;

@@ -41,7 +41,7 @@ TEST(Obj, IgnoresStatementsItDoesNotUseAndHandlesLayout) {
       "mtllib scene.mtl\r\n"
       "o thing\r\ng group1 group2\r\ns off\r\nusemtl red\r\n"
       "v\t+1.5  -2e0\t3 # trailing comment\r\n"
-      "v 4 5 6 1.0\r\n"                 // homogeneous w
+      "v 4 5 6 1.0\r\n"                  // homogeneous w
       "v 7 8 \\\n 9 0.5 0.25 0.125\r\n"  // continuation, then an RGB color
       "vp 0.5\r\nvn 0 0 1\r\nvt 0.1 0.2 0.3\r\n"
       "\r\n   \r\n"

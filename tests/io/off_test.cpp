@@ -40,12 +40,11 @@ TEST(Off, HeaderLayoutVariants) {
 }
 
 TEST(Off, CountsThatDisagreeWithContentAreErrors) {
-  EXPECT_ERROR_HAS(read_off("OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n", "v.off"), "v.off:6:",
-                   "after 3 of the 4 vertices");
-  EXPECT_ERROR_HAS(read_off("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "f.off"), "f.off:7:",
-                   "after 1 of the 2 faces");
-  EXPECT_ERROR_HAS(read_off("OFF\n3 1 0\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n", "short.off"), "short.off:4:",
-                   "vertex z coordinate", "end of line");
+  EXPECT_ERROR_HAS(read_off("OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n", "v.off"), "v.off:6:", "after 3 of the 4 vertices");
+  EXPECT_ERROR_HAS(read_off("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "f.off"),
+                   "f.off:7:", "after 1 of the 2 faces");
+  EXPECT_ERROR_HAS(read_off("OFF\n3 1 0\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n", "short.off"),
+                   "short.off:4:", "vertex z coordinate", "end of line");
   EXPECT_ERROR_HAS(read_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n# pad\n", "fs.off"), "fs.off:6:", "face index",
                    "end of line");
   EXPECT_ERROR_HAS(read_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n9 0 1 2\n", "fc.off"), "fc.off:6:", "9 vertices");

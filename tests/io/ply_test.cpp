@@ -150,8 +150,8 @@ TEST(Ply, AsciiWithExtraPropertiesAndElements) {
 
 TEST(Ply, ErrorsInHeaders) {
   EXPECT_ERROR_HAS(read_ply("plx\n", "a.ply"), "a.ply:1:", "not a PLY file");
-  EXPECT_ERROR_HAS(read_ply("ply\nformat binary_middle_endian 1.0\nend_header\n", "b.ply"), "b.ply:2:",
-                   "unknown PLY format");
+  EXPECT_ERROR_HAS(read_ply("ply\nformat binary_middle_endian 1.0\nend_header\n", "b.ply"),
+                   "b.ply:2:", "unknown PLY format");
   EXPECT_ERROR_HAS(read_ply("ply\nformat ascii 1.0\nelement vertex 1\nproperty flot x\nend_header\n", "c.ply"),
                    "c.ply:4:", "'flot'");
   EXPECT_ERROR_HAS(read_ply("ply\nformat ascii 1.0\nelement vertex 0\n", "d.ply"), "d.ply", "no 'end_header'");
@@ -159,10 +159,11 @@ TEST(Ply, ErrorsInHeaders) {
                             "end_header\n0 0\n",
                             "e.ply"),
                    "e.ply", "no 'z' property");
-  EXPECT_ERROR_HAS(read_ply("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-                            "property float z\nelement face 1\nproperty list uchar int corners\nend_header\n0 0 0\n3 0 0 0\n",
-                            "f.ply"),
-                   "f.ply", "no 'vertex_indices'");
+  EXPECT_ERROR_HAS(
+      read_ply("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+               "property float z\nelement face 1\nproperty list uchar int corners\nend_header\n0 0 0\n3 0 0 0\n",
+               "f.ply"),
+      "f.ply", "no 'vertex_indices'");
   EXPECT_ERROR_HAS(read_ply("ply\nformat ascii 1.0\nelement tristrips 1\nproperty list int int vertex_indices\n"
                             "end_header\n3 0 1 2\n",
                             "t.ply"),
@@ -174,13 +175,13 @@ const std::string kAsciiHead =
     "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
 
 TEST(Ply, AsciiCountsAndValuesMustMatchContent) {
-  EXPECT_ERROR_HAS(read_ply(kAsciiHead + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "r.ply"), "r.ply:13:",
-                   "face index 3 out of range", "3 vertices");
+  EXPECT_ERROR_HAS(read_ply(kAsciiHead + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "r.ply"),
+                   "r.ply:13:", "face index 3 out of range", "3 vertices");
   EXPECT_ERROR_HAS(read_ply(kAsciiHead + "0 0 0\n1 0 0\n0 1 0\n", "trunc.ply"), "trunc.ply:", "face vertex count");
-  EXPECT_ERROR_HAS(read_ply(kAsciiHead + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n", "extra.ply"), "extra.ply:14:",
-                   "unexpected");
-  EXPECT_ERROR_HAS(read_ply(kAsciiHead + "0 0 0\n1 0 0 7\n0 1 0\n3 0 1 2\n", "wide.ply"), "wide.ply:11:",
-                   "extra value");
+  EXPECT_ERROR_HAS(read_ply(kAsciiHead + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n", "extra.ply"),
+                   "extra.ply:14:", "unexpected");
+  EXPECT_ERROR_HAS(read_ply(kAsciiHead + "0 0 0\n1 0 0 7\n0 1 0\n3 0 1 2\n", "wide.ply"),
+                   "wide.ply:11:", "extra value");
   EXPECT_ERROR_HAS(read_ply(kAsciiHead + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", "nan.ply"), "nan.ply:11:", "not finite");
   EXPECT_ERROR_HAS(read_ply(kAsciiHead + "0 0 0\n1 0 0\n0 1 0\n2 0 1\n", "deg.ply"), "deg.ply:13:", "2 vertices");
 }

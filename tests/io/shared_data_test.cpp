@@ -62,8 +62,8 @@ TEST(SharedData, ManifestMeshesLoadWithListedTriangleCounts) {
     try {
       const ember::Mesh mesh = ember::read_mesh(file);
       if (mesh.triangle_count() != expected)
-        problems.push_back(cols[path_col] + ": " + std::to_string(mesh.triangle_count()) + " triangles, manifest says " +
-                           std::to_string(expected));
+        problems.push_back(cols[path_col] + ": " + std::to_string(mesh.triangle_count()) +
+                           " triangles, manifest says " + std::to_string(expected));
     } catch (const ember::Error& e) {
       problems.push_back(cols[path_col] + ": " + e.what());
     }
@@ -94,7 +94,8 @@ TEST(SharedData, DirtyAndPeerFilesLoadOrThrowEmberError) {
       ++loaded;
     } catch (const ember::Error& e) {
       ++rejected;
-      EXPECT_NE(std::string(e.what()).find(f.string()), std::string::npos) << "message does not name the file: " << e.what();
+      EXPECT_NE(std::string(e.what()).find(f.string()), std::string::npos)
+          << "message does not name the file: " << e.what();
     }
   }
   EXPECT_EQ(loaded + rejected, static_cast<int>(files.size()));

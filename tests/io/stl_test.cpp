@@ -92,8 +92,8 @@ TEST(Stl, AsciiWithSeveralSolidsAndUppercaseKeywords) {
 
 TEST(Stl, BinaryErrorsGiveByteOffsets) {
   std::string bytes = binary_stl({{0, 0, 0, 1, 0, 0, 0, 1, 0}, {1, 0, 0, 1, 1, 0, 0, 1, 0}});
-  EXPECT_ERROR_HAS(read_stl(bytes.substr(0, bytes.size() - 7), "cut.stl"), "cut.stl: byte 80:",
-                   "declares 2 triangles", "184 bytes", "177 bytes");
+  EXPECT_ERROR_HAS(read_stl(bytes.substr(0, bytes.size() - 7), "cut.stl"), "cut.stl: byte 80:", "declares 2 triangles",
+                   "184 bytes", "177 bytes");
   const float nan = std::numeric_limits<float>::quiet_NaN();
   std::memcpy(bytes.data() + 84 + 50 + 12 + 12 + 4, &nan, 4);  // triangle 1, corner 1, y
   EXPECT_ERROR_HAS(read_stl(bytes, "nan.stl"), "nan.stl: byte 162:", "triangle 1 corner 1", "non-finite y coordinate");
@@ -117,14 +117,14 @@ TEST(Stl, AsciiWithoutEndsolidIsReadWithAWarning) {
 }
 
 TEST(Stl, AsciiErrorsGiveLines) {
-  EXPECT_ERROR_HAS(read_stl("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 zero 0\n", "num.stl"), "num.stl:4:",
-                   "vertex y coordinate", "'zero'");
+  EXPECT_ERROR_HAS(read_stl("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 zero 0\n", "num.stl"),
+                   "num.stl:4:", "vertex y coordinate", "'zero'");
   EXPECT_ERROR_HAS(read_stl("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n"
                             "endfacet\nendsolid a\n",
                             "two.stl"),
                    "two.stl:6:", "2 vertices");
-  EXPECT_ERROR_HAS(read_stl("solid a\nfacet normal 0 0 1\nouter loop\nvertex inf 0 0\n", "inf.stl"), "inf.stl:4:",
-                   "not finite");
+  EXPECT_ERROR_HAS(read_stl("solid a\nfacet normal 0 0 1\nouter loop\nvertex inf 0 0\n", "inf.stl"),
+                   "inf.stl:4:", "not finite");
   EXPECT_ERROR_HAS(read_stl("solid a\nfacet normal 0 0 1\nouter lop\n", "kw.stl"), "kw.stl:3:", "expected 'loop'");
 }
 

@@ -49,7 +49,8 @@ TEST(ThreeMf, RoundTripKeepsFloatCoordinatesAndTriangles) {
   const Mesh back = read_mesh(write_3mf(cube), MeshFormat::ThreeMf, "cube.3mf");
   EXPECT_TRUE(same_up_to_3mf_rounding(back, cube));
   const Mesh torus = shapes::torus(1.0, 0.3, 24, 12);
-  EXPECT_TRUE(same_up_to_3mf_rounding(read_mesh(write_mesh(torus, MeshFormat::ThreeMf), MeshFormat::ThreeMf, "t"), torus));
+  EXPECT_TRUE(
+      same_up_to_3mf_rounding(read_mesh(write_mesh(torus, MeshFormat::ThreeMf), MeshFormat::ThreeMf, "t"), torus));
 }
 
 TEST(ThreeMf, SeveralObjectsAreSeparateMeshes) {

@@ -167,8 +167,8 @@ TEST(IntOracle, MultiTermExpressions) {
   }
   // Extremes of the dot product: all terms at their bound with the same sign.
   const mpz_class p = pow2(53) - 1, x = pow2(188) - 1, d = pow2(162) - 1, w = pow2(79) - 1;
-  const auto dot = from_mpz<53>(p) * from_mpz<188>(x) + from_mpz<53>(-p) * from_mpz<188>(-x) +
-                   from_mpz<162>(d) * from_mpz<79>(w);
+  const auto dot =
+      from_mpz<53>(p) * from_mpz<188>(x) + from_mpz<53>(-p) * from_mpz<188>(-x) + from_mpz<162>(d) * from_mpz<79>(w);
   EXPECT_EQ(to_mpz(dot), 2 * p * x + d * w);
 }
 

@@ -84,10 +84,10 @@ class TempDir {
 };
 
 struct RunResult {
-  int exit_code = -1;       ///< WEXITSTATUS, or -1 if the process did not exit normally
-  bool signaled = false;    ///< killed by a signal (crash)
-  std::string out, err;     ///< captured stdout and stderr
-  std::string command;      ///< the shell command, for failure messages
+  int exit_code = -1;     ///< WEXITSTATUS, or -1 if the process did not exit normally
+  bool signaled = false;  ///< killed by a signal (crash)
+  std::string out, err;   ///< captured stdout and stderr
+  std::string command;    ///< the shell command, for failure messages
 };
 
 inline std::string shell_quote(const std::string& s) {
@@ -141,8 +141,8 @@ inline RunResult run_cli(const TempDir& dir, const std::vector<std::string>& arg
 }
 
 inline std::string describe(const RunResult& r) {
-  return "command: " + r.command + "\nexit: " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out +
-         "\nstderr:\n" + r.err;
+  return "command: " + r.command + "\nexit: " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" +
+         r.err;
 }
 
 }  // namespace ember::clitest

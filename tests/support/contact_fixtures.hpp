@@ -55,7 +55,6 @@ inline std::vector<Tri> sliver_rod(std::size_t count, const IntPoint& centre, un
   return tris;
 }
 
-
 /// Contact triangles with ids equal iff positions equal (as the set-up's weld
 /// gives). They refer to the corners in `tris`, which must outlive them.
 inline std::vector<core::ContactTriangle> with_ids(const std::vector<Tri>& tris) {
@@ -75,7 +74,8 @@ std::vector<core::ContactTriangle> with_ids(std::vector<Tri>&&) = delete;  // wo
 /// the edge is manifold (used twice, in opposite directions), else
 /// kNoNeighbor: what the set-up's edge matching gives (GridTriangles::neighbors).
 inline std::vector<std::array<std::uint32_t, 3>> manifold_neighbours(const std::vector<core::ContactTriangle>& tris) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::pair<std::uint32_t, int>>> uses;  // undirected edge -> (triangle, edge)
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::pair<std::uint32_t, int>>>
+      uses;  // undirected edge -> (triangle, edge)
   for (std::uint32_t t = 0; t < tris.size(); ++t)
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = tris[t].id[k], b = tris[t].id[(k + 1) % 3];

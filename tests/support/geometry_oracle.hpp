@@ -25,7 +25,9 @@ inline MpPoint to_mp(const IntPoint& p) { return {mpz64(p.x), mpz64(p.y), mpz64(
 /// -1, 0, +1 (gmpxx's sgn may return any signed value).
 inline int sign_of(const mpz_class& v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 
-inline mpz_class dot(const MpPlane& s, const MpPoint& x) { return s[0] * x[0] + s[1] * x[1] + s[2] * x[2] + s[3] * x[3]; }
+inline mpz_class dot(const MpPlane& s, const MpPoint& x) {
+  return s[0] * x[0] + s[1] * x[1] + s[2] * x[2] + s[3] * x[3];
+}
 
 /// Plane through three grid points with normal (p1-p0)x(p2-p0).
 inline MpPlane oracle_support(const IntPoint& p0, const IntPoint& p1, const IntPoint& p2) {
@@ -66,11 +68,14 @@ class Gen {
     const std::int64_t L = kCoordLimit;
     switch (rng_() % 3) {
       case 0: return (rng_() & 1) ? L : -L;
-      case 1: return (rng_() & 1) ? L - static_cast<std::int64_t>(rng_() % 64) : -L + static_cast<std::int64_t>(rng_() % 64);
+      case 1:
+        return (rng_() & 1) ? L - static_cast<std::int64_t>(rng_() % 64) : -L + static_cast<std::int64_t>(rng_() % 64);
       default: return std::uniform_int_distribution<std::int64_t>(-L, L)(rng_);
     }
   }
-  std::int64_t uniform(std::int64_t lo, std::int64_t hi) { return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng_); }
+  std::int64_t uniform(std::int64_t lo, std::int64_t hi) {
+    return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng_);
+  }
   IntPoint point() { return {coord(), coord(), coord()}; }
   IntPoint small_point(std::int64_t r) { return {uniform(-r, r), uniform(-r, r), uniform(-r, r)}; }
   std::array<IntPoint, 3> triangle() {

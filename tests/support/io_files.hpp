@@ -26,10 +26,10 @@ std::string error_of(F&& f) {
   return {};
 }
 
-#define EXPECT_ERROR_HAS(call, ...)                                                     \
-  do {                                                                                 \
-    const std::string msg_ = ::ember::test::error_of([&] { (void)(call); });            \
-    for (const std::string& part_ : std::initializer_list<std::string>{__VA_ARGS__})                                          \
+#define EXPECT_ERROR_HAS(call, ...)                                                               \
+  do {                                                                                            \
+    const std::string msg_ = ::ember::test::error_of([&] { (void)(call); });                      \
+    for (const std::string& part_ : std::initializer_list<std::string>{__VA_ARGS__})              \
       EXPECT_NE(msg_.find(part_), std::string::npos) << "'" << part_ << "' missing in: " << msg_; \
   } while (0)
 

@@ -42,7 +42,8 @@ template <class F>
 inline void for_each_fan_triangle(const Mesh& m, F&& f) {
   for (std::size_t i = 0; i < m.face_count(); ++i) {
     auto face = m.face(i);
-    for (std::size_t k = 1; k + 1 < face.size(); ++k) f(m.vertices[face[0]], m.vertices[face[k]], m.vertices[face[k + 1]]);
+    for (std::size_t k = 1; k + 1 < face.size(); ++k)
+      f(m.vertices[face[0]], m.vertices[face[k]], m.vertices[face[k + 1]]);
   }
 }
 
@@ -130,7 +131,8 @@ inline double point_triangle_distance(Vec3d p, Vec3d a, Vec3d b, Vec3d c) {
 
 inline double distance_to_surface(const Mesh& m, Vec3d p) {
   double best = std::numeric_limits<double>::infinity();
-  for_each_fan_triangle(m, [&](Vec3d a, Vec3d b, Vec3d c) { best = std::min(best, point_triangle_distance(p, a, b, c)); });
+  for_each_fan_triangle(m,
+                        [&](Vec3d a, Vec3d b, Vec3d c) { best = std::min(best, point_triangle_distance(p, a, b, c)); });
   return best;
 }
 
@@ -174,7 +176,8 @@ inline std::string face_problems(const Mesh& m, double convex_tol = -1) {
       std::ostringstream d;
       d.precision(17);
       d << "zero area:";
-      for (std::uint32_t i : face) d << " (" << m.vertices[i].x << ", " << m.vertices[i].y << ", " << m.vertices[i].z << ")";
+      for (std::uint32_t i : face)
+        d << " (" << m.vertices[i].x << ", " << m.vertices[i].y << ", " << m.vertices[i].z << ")";
       report(f, d.str());
       continue;
     }
@@ -246,14 +249,15 @@ inline std::size_t tjunction_vertices(const Mesh& m) {
   for_each_directed_edge(m, [&](std::uint32_t a, std::uint32_t b) { ++uses[{std::min(a, b), std::max(a, b)}]; });
   std::vector<std::uint32_t> by_x(m.vertices.size());
   for (std::uint32_t v = 0; v < by_x.size(); ++v) by_x[v] = v;
-  std::sort(by_x.begin(), by_x.end(), [&](std::uint32_t a, std::uint32_t b) { return m.vertices[a].x < m.vertices[b].x; });
+  std::sort(by_x.begin(), by_x.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return m.vertices[a].x < m.vertices[b].x; });
   std::size_t found = 0;
   for (const auto& [e, count] : uses) {
     if (count != 2) continue;
     const Vec3d &a = m.vertices[e.first], &b = m.vertices[e.second];
     const double lo = std::min(a.x, b.x), hi = std::max(a.x, b.x);
-    auto it = std::lower_bound(by_x.begin(), by_x.end(), lo,
-                               [&](std::uint32_t v, double x) { return m.vertices[v].x < x; });
+    auto it =
+        std::lower_bound(by_x.begin(), by_x.end(), lo, [&](std::uint32_t v, double x) { return m.vertices[v].x < x; });
     for (; it != by_x.end() && m.vertices[*it].x <= hi; ++it) {
       const Vec3d& p = m.vertices[*it];
       if (*it == e.first || *it == e.second || p.y < std::min(a.y, b.y) || p.y > std::max(a.y, b.y) ||
@@ -287,11 +291,11 @@ inline Indicator reference_indicator(Operation op, std::size_t n, int min_k = 1)
 }
 
 struct MembershipReport {
-  int checked = 0;     ///< points compared
-  int skipped = 0;     ///< points too close to a surface
-  int mismatches = 0;  ///< output winding number != indicator of the inputs
-  int non_integer = 0; ///< winding numbers that were not close to an integer
-  std::string first;   ///< description of the first mismatch
+  int checked = 0;      ///< points compared
+  int skipped = 0;      ///< points too close to a surface
+  int mismatches = 0;   ///< output winding number != indicator of the inputs
+  int non_integer = 0;  ///< winding numbers that were not close to an integer
+  std::string first;    ///< description of the first mismatch
 };
 
 /// Samples random points in the joint bounding box of the operands (slightly
@@ -357,7 +361,8 @@ struct Box {
 /// multiplicity: winding number = number of containing boxes) of operands[i],
 /// by counting cells of size `cell` (all box coordinates must be multiples of
 /// `cell`; a power of two keeps the result exact).
-inline double voxel_volume(const std::vector<std::vector<Box>>& operands, const Indicator& indicator, double cell = 1.0) {
+inline double voxel_volume(const std::vector<std::vector<Box>>& operands, const Indicator& indicator,
+                           double cell = 1.0) {
   Bounds b;
   for (const auto& op : operands)
     for (const Box& x : op) b.add(x.lo), b.add(x.hi);

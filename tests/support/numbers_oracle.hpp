@@ -29,8 +29,8 @@ inline mpz_class random_with_length(std::mt19937_64& rng, int len) {
 /// half the time with a uniformly chosen bit length (so small values appear).
 inline mpz_class random_value(std::mt19937_64& rng, int bits) {
   if (rng() & 1) {
-    mpz_class v = random_with_length(rng, bits);  // random bits below bit `bits`
-    v = abs(v) - pow2(bits - 1);                  // [0, 2^(bits-1)) ...
+    mpz_class v = random_with_length(rng, bits);       // random bits below bit `bits`
+    v = abs(v) - pow2(bits - 1);                       // [0, 2^(bits-1)) ...
     v += (rng() & 1) ? pow2(bits - 1) : mpz_class(0);  // ... or the upper half
     return (rng() & 1) ? mpz_class(-v) : v;
   }

@@ -165,7 +165,7 @@ inline Mesh tessellated_box(Vec3d lo, Vec3d hi, int cells, bool triangles = true
 /// Icosphere: an icosahedron subdivided `level` times, projected to the sphere.
 inline Mesh icosphere(Vec3d center, double radius, int level) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Vec3d> v{{-1, t, 0}, {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+  std::vector<Vec3d> v{{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
                        {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   for (Vec3d& p : v) p = (1.0 / norm(p)) * p;
   std::vector<std::array<std::uint32_t, 3>> f{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
@@ -331,7 +331,9 @@ inline Mesh merge(std::span<const Mesh> parts) {
   }
   return out;
 }
-inline Mesh merge(std::initializer_list<Mesh> parts) { return merge(std::span<const Mesh>(parts.begin(), parts.size())); }
+inline Mesh merge(std::initializer_list<Mesh> parts) {
+  return merge(std::span<const Mesh>(parts.begin(), parts.size()));
+}
 
 /// Largest |coordinate| over all meshes.
 inline double max_abs_coordinate(std::span<const Mesh> meshes) {
@@ -357,7 +359,8 @@ inline double snap_step(double max_abs) {
 inline void snap_to_grid(std::span<Mesh> meshes) {
   double h = snap_step(max_abs_coordinate(meshes));
   for (Mesh& m : meshes)
-    for (Vec3d& p : m.vertices) p = {std::nearbyint(p.x / h) * h, std::nearbyint(p.y / h) * h, std::nearbyint(p.z / h) * h};
+    for (Vec3d& p : m.vertices)
+      p = {std::nearbyint(p.x / h) * h, std::nearbyint(p.y / h) * h, std::nearbyint(p.z / h) * h};
 }
 inline std::vector<Mesh> snapped(std::vector<Mesh> meshes) {
   snap_to_grid(meshes);

@@ -85,7 +85,9 @@ void for_each_edge(const WeldedTriangles& welded, F&& f) {
     for (std::size_t t = block * block_size, end = std::min(n, t + block_size); t < end; ++t)
       for (int e = 0; e < 3; ++e) {
         const std::uint32_t a = welded.ids[t][e], b = welded.ids[t][(e + 1) % 3];
-        if (a != b) use(Use{std::min(a, b), {std::max(a, b), static_cast<std::uint32_t>(t), a < b, static_cast<std::uint8_t>(e)}});
+        if (a != b)
+          use(Use{std::min(a, b),
+                  {std::max(a, b), static_cast<std::uint32_t>(t), a < b, static_cast<std::uint8_t>(e)}});
       }
   };
   // slot[bucket * blocks + block]: first the counts, then where the block

@@ -64,7 +64,7 @@ std::optional<int> rounding_change_filtered(const Vec3d& a, const Vec3d& b, cons
   const double n[3] = {uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
   const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
   const double threshold = 0x1p-80 * (ux * ux + uy * uy + uz * uz) * (vx * vx + vy * vy + vz * vz);
-  if (n2 <= 0.25 * threshold) return -1;      // |n| <= 2^-41 |u||v|: no area
+  if (n2 <= 0.25 * threshold) return -1;            // |n| <= 2^-41 |u||v|: no area
   if (!(n2 >= 4 * threshold)) return std::nullopt;  // near the area threshold
   if (g[0] == 0 && g[1] == 0 && g[2] == 0) return 1;
   // |g_i| < 2^53: exact in double.
@@ -240,11 +240,11 @@ std::size_t weld_grid_vertices(const GridVertices& g, FillVector<std::uint32_t>&
     for (std::size_t i = r.begin(); i != r.end(); ++i) by_x[i] = {offset(g.pos[g.used[i]].x), g.used[i]};
   });
   sort_pairs(by_x);  // by (x, index): used is increasing
-  sort_equal_key_runs(by_x, [&](const std::pair<std::uint32_t, std::uint32_t>& a,
-                                const std::pair<std::uint32_t, std::uint32_t>& b) {
-    const IntPoint &p = g.pos[a.second], &q = g.pos[b.second];
-    return p.y != q.y ? p.y < q.y : (p.z != q.z ? p.z < q.z : a.second < b.second);
-  });
+  sort_equal_key_runs(
+      by_x, [&](const std::pair<std::uint32_t, std::uint32_t>& a, const std::pair<std::uint32_t, std::uint32_t>& b) {
+        const IntPoint &p = g.pos[a.second], &q = g.pos[b.second];
+        return p.y != q.y ? p.y < q.y : (p.z != q.z ? p.z < q.z : a.second < b.second);
+      });
   // A new id wherever the position changes along that order: a parallel
   // prefix sum (the serial numbering loop was 12-15 ms of each operand's
   // set-up at 16 threads on the 1.08M-triangle union).
@@ -265,31 +265,32 @@ std::size_t weld_grid_vertices(const GridVertices& g, FillVector<std::uint32_t>&
 /// Writes the n - 2 triangles of every face of operand o from `first` on.
 void triangulate_faces(const Mesh& m, std::uint32_t o, const GridVertices& g, const FillVector<std::uint32_t>& id,
                        std::size_t first, GridInput& gi) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.face_count(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    std::vector<IntPoint> corners;
-    std::vector<std::array<std::uint32_t, 3>> tris;
-    for (std::size_t f = r.begin(); f != r.end(); ++f) {
-      const auto face = m.face(f);
-      std::size_t out = first + m.face_offsets[f] - 2 * f;
-      const auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-        const std::uint32_t va = face[a], vb = face[b], vc = face[c];
-        gi.triangles[out] = {{va, vb, vc}, o, static_cast<std::uint32_t>(f)};
-        gi.corners[out] = {g.pos[va], g.pos[vb], g.pos[vc]};
-        gi.vertex_ids[out] = {id[va], id[vb], id[vc]};
-        gi.normals[out] = grid_normal(g.pos[va], g.pos[vb], g.pos[vc]);
-        ++out;
-      };
-      if (face.size() == 3) {
-        emit(0, 1, 2);
-        continue;
-      }
-      corners.clear();
-      for (const std::uint32_t v : face) corners.push_back(g.pos[v]);
-      tris.clear();
-      triangulate_polygon(corners, tris);
-      for (const auto& t : tris) emit(t[0], t[1], t[2]);
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.face_count(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      std::vector<IntPoint> corners;
+                      std::vector<std::array<std::uint32_t, 3>> tris;
+                      for (std::size_t f = r.begin(); f != r.end(); ++f) {
+                        const auto face = m.face(f);
+                        std::size_t out = first + m.face_offsets[f] - 2 * f;
+                        const auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+                          const std::uint32_t va = face[a], vb = face[b], vc = face[c];
+                          gi.triangles[out] = {{va, vb, vc}, o, static_cast<std::uint32_t>(f)};
+                          gi.corners[out] = {g.pos[va], g.pos[vb], g.pos[vc]};
+                          gi.vertex_ids[out] = {id[va], id[vb], id[vc]};
+                          gi.normals[out] = grid_normal(g.pos[va], g.pos[vb], g.pos[vc]);
+                          ++out;
+                        };
+                        if (face.size() == 3) {
+                          emit(0, 1, 2);
+                          continue;
+                        }
+                        corners.clear();
+                        for (const std::uint32_t v : face) corners.push_back(g.pos[v]);
+                        tris.clear();
+                        triangulate_polygon(corners, tris);
+                        for (const auto& t : tris) emit(t[0], t[1], t[2]);
+                      }
+                    });
 }
 
 }  // namespace
@@ -341,7 +342,9 @@ void audit_quantization(std::span<const Mesh> operands, const GridInput& grid, c
           }
           return c;
         },
-        [](Counts a, const Counts& b) { return Counts{a[0] + b[0], a[1] + b[1], a[2] + b[2]}; });
+        [](Counts a, const Counts& b) {
+          return Counts{a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+        });
   };
   for_each_operand(grid, operands.size(), count);
   for (std::size_t o = 0; o < operands.size(); ++o) {
@@ -361,9 +364,9 @@ void audit_quantization(std::span<const Mesh> operands, const GridInput& grid, c
     // Boolean of the given shapes, so refuse rather than answer wrongly.
     if (2 * changed > with_area)
       throw Error(what +
-                  "; most of the operand is lost on the grid, so the result would not be the Boolean of the given "
-                  "shapes. It is thinner than the step or too small beside the other operands: remove far-away or "
-                  "huge geometry, or scale the operands to similar sizes",
+                      "; most of the operand is lost on the grid, so the result would not be the Boolean of the given "
+                      "shapes. It is thinner than the step or too small beside the other operands: remove far-away or "
+                      "huge geometry, or scale the operands to similar sizes",
                   {.operand = o});
     warnings.push_back("operand " + std::to_string(o) + ": " + what + "; features finer than the step are lost");
   }

@@ -32,7 +32,7 @@ struct GridTriangle {
 /// keeps (corners, vertex ids, normals) are separate, so that
 /// build_grid_triangles can move them there.
 struct GridInput {
-  FillVector<GridTriangle> triangles;    ///< operand by operand, faces in order
+  FillVector<GridTriangle> triangles;           ///< operand by operand, faces in order
   FillVector<std::array<IntPoint, 3>> corners;  ///< per triangle, its grid corners
   /// Per triangle, its corners' welded grid vertex ids: within one operand,
   /// equal ids iff equal grid positions (numbered in sorted position order,

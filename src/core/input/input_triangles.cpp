@@ -23,8 +23,7 @@ namespace {
 /// be non-decreasing (then every face's span lies inside `indices`).
 std::optional<std::string> face_problem(const Mesh& m, std::size_t f) {
   if (m.face_size(f) < 3)
-    return "face " + std::to_string(f) + " has " + std::to_string(m.face_size(f)) +
-           " vertices; faces need at least 3";
+    return "face " + std::to_string(f) + " has " + std::to_string(m.face_size(f)) + " vertices; faces need at least 3";
   for (const std::uint32_t v : m.face(f))
     if (v >= m.vertices.size())
       return "face " + std::to_string(f) + " uses vertex index " + std::to_string(v) + ", but the mesh has " +
@@ -139,7 +138,8 @@ InputTriangles build_grid_triangles(GridInput& gi, const EdgeMatching& edges) {
   FillVector<std::uint32_t> id(n + 1);  // pass 1 writes id[1..n]
   id[0] = 0;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) id[i + 1] = gi.normals[i] != std::array<std::int64_t, 3>{0, 0, 0};
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      id[i + 1] = gi.normals[i] != std::array<std::int64_t, 3>{0, 0, 0};
   });
   // Ids in input order over the kept triangles: an exclusive prefix sum.
   static_assert(sizeof(std::uint32_t) == 4);

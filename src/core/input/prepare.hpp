@@ -29,7 +29,7 @@ struct PreparedInput {
   /// weld and T-junction search; none when they do not fit 32 bits (the weld
   /// then sorts every corner).
   std::optional<InputTopology> topology;
-  std::size_t input_triangles = 0;  ///< after fan triangulation, degenerate ones included
+  std::size_t input_triangles = 0;     ///< after fan triangulation, degenerate ones included
   std::vector<OperandReport> reports;  ///< per operand: triangles, what the grid did, open edges
   std::vector<std::string> warnings;
 };

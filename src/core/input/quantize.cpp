@@ -54,7 +54,7 @@ std::optional<double> offset_ratio_to_double(i128 x, i128 w, double dw, std::int
   const double qd = approx_to_double(x) / dw;
   if (!(std::fabs(qd) < 0x1p50)) return std::nullopt;
   auto q = static_cast<std::int64_t>(qd);  // truncated: within 3 of floor(x / w)
-  i128 r = x - static_cast<i128>(q) * w;  // |q w| < |x| + 3 w < 2^122
+  i128 r = x - static_cast<i128>(q) * w;   // |q w| < |x| + 3 w < 2^122
   for (int i = 0; i < 3 && r < 0; ++i) r += w, --q;
   for (int i = 0; i < 3 && r >= w; ++i) r -= w, ++q;
   if (r < 0 || r >= w) return std::nullopt;  // never, by the bound in 1.
@@ -115,8 +115,8 @@ Quantizer Quantizer::fit_box(const Vec3d& lo, const Vec3d& hi) {
   // quantized onto too coarse a grid and silently collapse: refuse it.
   if (k > kMaxExponent) {
     char msg[96];
-    std::snprintf(msg, sizeof msg, "the model's extent is %.3g, below the smallest the grid supports (%.2g",
-                  2 * half, std::ldexp(2.0 * static_cast<double>(kLimit - 2), -kMaxExponent));
+    std::snprintf(msg, sizeof msg, "the model's extent is %.3g, below the smallest the grid supports (%.2g", 2 * half,
+                  std::ldexp(2.0 * static_cast<double>(kLimit - 2), -kMaxExponent));
     throw Error(std::string("coordinates too small to quantize: ") + msg +
                 ", near the subnormal range); scale the model up (by a power of two to keep coordinates exact)");
   }
@@ -127,7 +127,8 @@ Quantizer Quantizer::fit_box(const Vec3d& lo, const Vec3d& hi) {
   for (int i = 0; i < 3; ++i) {
     const double mid = coord(lo, i) / 2 + coord(hi, i) / 2;
     const double c = std::nearbyint(std::ldexp(mid, k));
-    if (!(std::fabs(c) < 9.0e18)) throw Error("coordinates too large to quantize: the model is too far from the origin for its size");
+    if (!(std::fabs(c) < 9.0e18))
+      throw Error("coordinates too large to quantize: the model is too far from the origin for its size");
     q.c_[i] = static_cast<std::int64_t>(c);
   }
   return q;

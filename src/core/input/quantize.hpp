@@ -40,9 +40,9 @@ class Quantizer {
   Vec3d dequantize(const Point& p) const;
   Vec3d dequantize(const IntPoint& p) const;
 
-  int exponent() const { return k_; }                       ///< scale = 2^exponent
-  const std::int64_t* centre_grid() const { return c_; }    ///< centre * 2^k, per axis
-  double grid_spacing() const;                              ///< 2^-k in caller units
+  int exponent() const { return k_; }                     ///< scale = 2^exponent
+  const std::int64_t* centre_grid() const { return c_; }  ///< centre * 2^k, per axis
+  double grid_spacing() const;                            ///< 2^-k in caller units
   /// Every grid point with |coordinate| <= kCoordLimit dequantizes exactly:
   /// |centre| + kCoordLimit < 2^53 on every axis, so x + centre is a double
   /// and scaling by 2^-k (normal) is exact. Then the rounded corners of a

@@ -96,7 +96,7 @@ Parents serial_components(const GridTriangles& grid, std::uint32_t first, std::s
 /// entry i is the smallest id of its component.
 template <typename Keep>
 FillVector<std::uint32_t> components(const GridTriangles& grid, std::uint32_t first, std::size_t count,
-                                      const Keep& keep) {
+                                     const Keep& keep) {
   Parents parent;
   if (tbb::this_task_arena::max_concurrency() == 1) {
     parent = serial_components(grid, first, count, keep);

@@ -10,16 +10,11 @@ namespace core {
 
 bool inside_by_count(Operation op, int min_k, std::size_t operands, std::size_t inside, bool first_inside) {
   switch (op) {
-    case Operation::Union:
-      return inside > 0;
-    case Operation::Intersection:
-      return inside == operands;
-    case Operation::Difference:
-      return first_inside && inside == 1;
-    case Operation::Xor:
-      return inside % 2 == 1;
-    case Operation::AtLeastK:
-      return inside >= static_cast<std::size_t>(min_k);
+    case Operation::Union: return inside > 0;
+    case Operation::Intersection: return inside == operands;
+    case Operation::Difference: return first_inside && inside == 1;
+    case Operation::Xor: return inside % 2 == 1;
+    case Operation::AtLeastK: return inside >= static_cast<std::size_t>(min_k);
   }
   return false;
 }
@@ -54,15 +49,13 @@ Indicator indicator_for(Operation op, std::size_t operands, int min_k) {
     case Operation::Union:
     case Operation::Intersection:
     case Operation::Difference:
-    case Operation::Xor:
-      break;
+    case Operation::Xor: break;
     case Operation::AtLeastK:
       if (min_k < 1 || static_cast<std::size_t>(min_k) > operands)
         throw Error("boolean: min_k must be between 1 and the number of operands (" + std::to_string(operands) +
                     "), got " + std::to_string(min_k));
       break;
-    default:
-      throw Error("boolean: unknown operation");
+    default: throw Error("boolean: unknown operation");
   }
   // Counting in place keeps the per-piece indicator call allocation-free.
   return [op, min_k](WindingVector w) {

@@ -20,14 +20,15 @@ namespace ember::core {
 /// The support plane is always the triangle's (support_of).
 struct OutputPolygon {
   PolygonBuffer<Point> vertices;  ///< explicit corners (counter-clockwise around the support); else empty
-  const std::array<IntPoint, 3>* corners = nullptr;  ///< the source triangle's grid corners (GridTriangles::corners[id])
-  std::uint32_t id = 0;       ///< source polygon (input triangle) id
+  const std::array<IntPoint, 3>* corners =
+      nullptr;           ///< the source triangle's grid corners (GridTriangles::corners[id])
+  std::uint32_t id = 0;  ///< source polygon (input triangle) id
   std::uint32_t operand = 0;
   /// By path: an index into the solve's paths (SolveOutput); kNoPath otherwise.
   std::uint32_t path = kNoPath;
   /// How many subdivision splits made the piece (SoupPolygon::splits).
   std::uint8_t splits = 0;
-  bool flip = false;          ///< emit with reversed orientation (in-out transition)
+  bool flip = false;  ///< emit with reversed orientation (in-out transition)
   /// The polygon is the whole subdivision piece its source triangle had in
   /// the box that emitted it (no leaf cut or trimmed it).
   bool whole_piece = false;

@@ -26,7 +26,8 @@ struct SolveContext {
   /// Per operand: solid (closed, outward, no self-intersections, no nested or
   /// touching components: w in {0, 1}). Enables the shortcuts of Fig. 11.
   std::vector<char> solid;
-  std::size_t leaf_size = 256;  ///< subdivide while a subproblem has more polygons (tuned: docs/design.md "Subdivision")
+  std::size_t leaf_size =
+      256;  ///< subdivide while a subproblem has more polygons (tuned: docs/design.md "Subdivision")
   /// Leaves hand winding numbers across shared input edges instead of
   /// tracing every piece (edge_windings.hpp). Off only in tests that compare
   /// the two.

@@ -65,8 +65,10 @@ bool line_clearly_misses(const AxisLine& l, const std::array<double, 2>& uv, con
   // The support's normal is the grid normal (p1 - p0) x (p2 - p0), exact in int64.
   const std::int64_t n = grid_normal(c[0], c[1], c[2])[static_cast<std::size_t>(l.axis)];
   std::array<std::array<double, 3>, 3> v;
-  for (int i = 0; i < 3; ++i) v[i] = {static_cast<double>(c[i].x), static_cast<double>(c[i].y), static_cast<double>(c[i].z)};
-  return line_clearly_misses(l, uv, (n > 0) - (n < 0), 3, [&](std::size_t i) -> const std::array<double, 3>& { return v[i]; });
+  for (int i = 0; i < 3; ++i)
+    v[i] = {static_cast<double>(c[i].x), static_cast<double>(c[i].y), static_cast<double>(c[i].z)};
+  return line_clearly_misses(l, uv, (n > 0) - (n < 0), 3,
+                             [&](std::size_t i) -> const std::array<double, 3>& { return v[i]; });
 }
 
 void approximate(const Soup& soup, SoupApprox& out) {

@@ -28,9 +28,9 @@ namespace ember::core {
 /// materialize() builds it where it is needed: before a clip that cuts the
 /// triangle, at a leaf, and for an exact trace test.
 struct SoupPolygon {
-  std::unique_ptr<Polygon> poly;  ///< null while unbuilt
-  std::uint32_t id = 0;       ///< input triangle index, unique
-  std::uint32_t operand = 0;  ///< which operand's surface this is
+  std::unique_ptr<Polygon> poly;     ///< null while unbuilt
+  std::uint32_t id = 0;              ///< input triangle index, unique
+  std::uint32_t operand = 0;         ///< which operand's surface this is
   std::array<double, 3> lo{}, hi{};  ///< conservative bounding box (grid units)
   /// How many subdivision splits made this piece of its input triangle (255:
   /// that many or more). The pieces of one triangle are the leaves of a binary
@@ -79,7 +79,7 @@ struct SoupApprox {
   std::vector<std::uint8_t> grid;
   std::vector<std::uint32_t> begin;                     ///< polygon i: verts[begin[i] .. begin[i+1])
   std::vector<std::array<std::int8_t, 3>> normal_sign;  ///< sign of each support normal coordinate
-  double max_abs = 0;  ///< the largest |coordinate| in verts
+  double max_abs = 0;                                   ///< the largest |coordinate| in verts
   std::span<const std::array<double, 3>> of(std::size_t i) const {
     return {verts.data() + begin[i], verts.data() + begin[i + 1]};
   }
@@ -98,7 +98,10 @@ void approximate(const Soup& soup, SoupApprox& out);
 /// sum of magnitudes; kUnsure where only the exact test can tell.
 struct LeafPlaneFilter {
   LeafPlaneFilter(const PlaneApprox& p, double max_abs)
-      : a(p.a), b(p.b), c(p.c), d(p.d),
+      : a(p.a),
+        b(p.b),
+        c(p.c),
+        d(p.d),
         bound(((std::fabs(p.a) + std::fabs(p.b) + std::fabs(p.c)) * max_abs + std::fabs(p.d)) * 0x1p-47) {}
   static constexpr int kUnsure = 2;
   /// The sign of the plane at f (a vertex approximation with |f_k| <=
@@ -123,8 +126,7 @@ const Polygon& built_polygon(const SoupPolygon& p, Polygon& scratch);
 
 /// The polygon's conservative box misses the box [lo, hi].
 inline bool box_disjoint(const SoupPolygon& p, const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
-  return p.hi[0] < lo[0] || p.lo[0] > hi[0] || p.hi[1] < lo[1] || p.lo[1] > hi[1] || p.hi[2] < lo[2] ||
-         p.lo[2] > hi[2];
+  return p.hi[0] < lo[0] || p.lo[0] > hi[0] || p.hi[1] < lo[1] || p.lo[1] > hi[1] || p.hi[2] < lo[2] || p.lo[2] > hi[2];
 }
 
 /// Closed integer box [lo, hi] per axis.

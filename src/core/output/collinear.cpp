@@ -21,7 +21,8 @@ namespace {
 struct Incidence {
   std::vector<std::uint32_t> begin;
   std::vector<std::uint32_t> edges;
-  Incidence(const std::vector<BoundaryEdge>& all, std::size_t vertex_count, bool outgoing) : begin(vertex_count + 1, 0) {
+  Incidence(const std::vector<BoundaryEdge>& all, std::size_t vertex_count, bool outgoing)
+      : begin(vertex_count + 1, 0) {
     for (const BoundaryEdge& e : all)
       if (e.alive) ++begin[(outgoing ? e.from : e.to) + 1];
     for (std::size_t v = 0; v < vertex_count; ++v) begin[v + 1] += begin[v];

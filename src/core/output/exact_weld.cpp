@@ -82,7 +82,8 @@ CornerLayout lay_out_corners(std::span<const OutputPolygon> polys, const Cycles&
   CornerLayout l;
   l.built_before.resize(polys.size() + 1, 0);
   for (std::size_t i = 0; i < polys.size(); ++i)
-    l.built_before[i + 1] = l.built_before[i] + (folded(polys[i], ids) ? 0 : static_cast<std::uint32_t>(corner_count(polys[i])));
+    l.built_before[i + 1] =
+        l.built_before[i] + (folded(polys[i], ids) ? 0 : static_cast<std::uint32_t>(corner_count(polys[i])));
   if (!ids) return l;
   l.first_corner.assign(ids->operand_base.back(), kNoCorner);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 1024), [&](const auto& r) {
@@ -120,13 +121,14 @@ OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer&
   }
   // Every item is written below (built corners, then used input vertices).
   FillVector<Item> item(items);
-  FillVector<Vec3d> rounded(items);  // per item: its rounded position
+  FillVector<Vec3d> rounded(items);                                  // per item: its rounded position
   FillVector<std::pair<std::uint32_t, std::uint32_t>> keyed(items);  // (hash of the key, item)
   auto set_key = [&](std::uint32_t i, const std::optional<IntPoint>& g, const Point* exact) {
     const Vec3d x = g ? q.dequantize(*g) : q.dequantize(*exact);
     rounded[i] = {x.x + 0.0, x.y + 0.0, x.z + 0.0};  // -0.0 -> +0.0: equal points, equal keys
     const std::uint32_t h =
-        g ? hash_key(static_cast<std::uint64_t>(g->x), static_cast<std::uint64_t>(g->y), static_cast<std::uint64_t>(g->z))
+        g ? hash_key(static_cast<std::uint64_t>(g->x), static_cast<std::uint64_t>(g->y),
+                     static_cast<std::uint64_t>(g->z))
           : hash_key(std::bit_cast<std::uint64_t>(rounded[i].x), std::bit_cast<std::uint64_t>(rounded[i].y),
                      std::bit_cast<std::uint64_t>(rounded[i].z));
     keyed[i] = {h, i};

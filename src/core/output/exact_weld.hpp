@@ -14,7 +14,6 @@ namespace ember::core {
 /// Step 1. Polygons keep their stored (unflipped) vertex order. With `ids`,
 /// the corners of unbuilt triangles are welded through their input vertex
 /// ids (faster; the same result).
-OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer& q,
-                          const InputTopology* ids = nullptr);
+OutputVertices exact_weld(std::span<const OutputPolygon> polys, const Quantizer& q, const InputTopology* ids = nullptr);
 
 }  // namespace ember::core

@@ -104,7 +104,7 @@ class LoopGrid {
   std::array<int, 2> axis_{};
   std::array<double, 2> origin_{}, scale_{};
   int side_ = 1;
-  std::vector<std::uint32_t> start_, end_;  // a cell's points: items_[start_[c], end_[c])
+  std::vector<std::uint32_t> start_, end_;          // a cell's points: items_[start_[c], end_[c])
   std::vector<std::uint32_t> items_, slot_, cell_;  // slot_[i]: i's place in items_; cell_[i]: its cell
 };
 

@@ -30,7 +30,6 @@ namespace ember::core {
 
 namespace {
 
-
 double ms_since(std::chrono::steady_clock::time_point& t) {
   const auto now = std::chrono::steady_clock::now();
   const double ms = std::chrono::duration<double, std::milli>(now - t).count();
@@ -323,8 +322,9 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
   assemble(direct, regions, slots, slot, count, override_regions, overrides, sources, tris, out.provenance);
   // The direct triangles' rounded corners are exact when grid points are
   // (Quantizer::grid_points_exact): none of them can round to zero area.
-  write_indexed_mesh(tris, verts.exact.size(), [&](std::uint32_t v) { return verts.rounded[v]; },
-                     q.grid_points_exact() ? direct.tris.size() : 0, out.mesh, out.stats.rounded_degenerate);
+  write_indexed_mesh(
+      tris, verts.exact.size(), [&](std::uint32_t v) { return verts.rounded[v]; },
+      q.grid_points_exact() ? direct.tris.size() : 0, out.mesh, out.stats.rounded_degenerate);
   out.stats.triangulate_ms = ms_since(clock);
   return out;
 }

@@ -49,8 +49,8 @@ void write_indexed_mesh(std::span<const std::array<std::uint32_t, 3>> tris, std:
                         std::size_t& rounded_degenerate);
 
 struct MeshOutputStats {
-  std::size_t tjunctions = 0;          ///< vertices inserted into edges
-  std::size_t collinear_removed = 0;   ///< boundary vertices removed on both sides
+  std::size_t tjunctions = 0;         ///< vertices inserted into edges
+  std::size_t collinear_removed = 0;  ///< boundary vertices removed on both sides
   std::size_t regions = 0;
   std::size_t fallback_regions = 0;    ///< regions triangulated piece by piece
   std::size_t rounded_degenerate = 0;  ///< triangles whose rounded corners have zero area

@@ -43,9 +43,8 @@ struct OutputVertices {
   /// A representative of each distinct point (FillVector: the weld writes
   /// every entry in parallel; zeroing ~100 bytes per point first was serial).
   FillVector<Point> exact;
-  std::vector<Vec3d> rounded;   ///< its correctly rounded position in caller units
-  Cycles corners;               ///< per output polygon: its corners' ids, in the polygon's own order
+  std::vector<Vec3d> rounded;  ///< its correctly rounded position in caller units
+  Cycles corners;              ///< per output polygon: its corners' ids, in the polygon's own order
 };
-
 
 }  // namespace ember::core

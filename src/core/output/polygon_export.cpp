@@ -13,7 +13,7 @@
 namespace ember::core {
 
 Mesh export_polygons(const std::vector<OutputPolygon>& polys, const Quantizer& q, std::span<const Provenance> sources,
-                 std::vector<Provenance>& provenance, std::size_t& dropped) {
+                     std::vector<Provenance>& provenance, std::size_t& dropped) {
   struct Key {
     std::uint64_t v[3];
     bool operator==(const Key& o) const { return std::memcmp(v, o.v, sizeof v) == 0; }
@@ -26,17 +26,18 @@ Mesh export_polygons(const std::vector<OutputPolygon>& polys, const Quantizer& q
   std::vector<std::size_t> offset(polys.size() + 1, 0);
   for (std::size_t i = 0; i < polys.size(); ++i) offset[i + 1] = offset[i] + corner_count(polys[i]);
   std::vector<Vec3d> rounded(offset.back());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const OutputPolygon& p = polys[i];
-      const std::size_t n = corner_count(p);
-      for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t at = p.flip ? n - 1 - k : k;
-        const Vec3d x = unbuilt(p) ? q.dequantize((*p.corners)[at]) : q.dequantize(p.vertices[at]);
-        rounded[offset[i] + k] = {x.x + 0.0, x.y + 0.0, x.z + 0.0};  // -0.0 -> +0.0 so equal points weld
-      }
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          const OutputPolygon& p = polys[i];
+          const std::size_t n = corner_count(p);
+          for (std::size_t k = 0; k < n; ++k) {
+            const std::size_t at = p.flip ? n - 1 - k : k;
+            const Vec3d x = unbuilt(p) ? q.dequantize((*p.corners)[at]) : q.dequantize(p.vertices[at]);
+            rounded[offset[i] + k] = {x.x + 0.0, x.y + 0.0, x.z + 0.0};  // -0.0 -> +0.0 so equal points weld
+          }
+        }
+      });
   Mesh mesh;
   std::unordered_map<Key, std::uint32_t, KeyHash> ids;
   ids.reserve(rounded.size() / 2);

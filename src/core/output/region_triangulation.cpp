@@ -333,12 +333,13 @@ bool clip_ears(const Ctx& k, std::span<const std::uint32_t> loop, std::span<EarN
       }
     }
     // x, another vertex of the loop now, lies in the closed triangle a b c.
-    return !others.any(node, a, b, c, box, [&](std::uint32_t x) __attribute__((always_inline)) {
-      const std::uint32_t v = loop[x];
-      if (v == loop[a] || v == loop[b] || v == loop[c] || box_excludes(box, x)) return false;
-      return k.orient(loop[a], loop[b], v) >= 0 && k.orient(loop[b], loop[c], v) >= 0 &&
-             k.orient(loop[c], loop[a], v) >= 0;
-    });
+    return !others.any(
+        node, a, b, c, box, [&](std::uint32_t x) __attribute__((always_inline)) {
+          const std::uint32_t v = loop[x];
+          if (v == loop[a] || v == loop[b] || v == loop[c] || box_excludes(box, x)) return false;
+          return k.orient(loop[a], loop[b], v) >= 0 && k.orient(loop[b], loop[c], v) >= 0 &&
+                 k.orient(loop[c], loop[a], v) >= 0;
+        });
   };
   // Best-shaped ear first (Manifold clips sharpest ears first for the same
   // reason): an ear at a nearly straight vertex would be a sliver, whose tiny
@@ -426,7 +427,8 @@ bool triangulate_region(const Regions& regions, std::uint32_t region, const Outp
     out.push_back({t[2], t[0], t[1]});  // the rotation the ear clipper ends with
     return true;
   };
-  if (const std::optional<std::array<std::uint32_t, 3>> t = single_triangle_loop(regions, region)) return emit_triangle(*t);
+  if (const std::optional<std::array<std::uint32_t, 3>> t = single_triangle_loop(regions, region))
+    return emit_triangle(*t);
   std::vector<std::vector<std::uint32_t>> loops;
   if (!collect_loops(regions, region, loops)) return false;
   if (loops.size() == 1 && loops[0].size() == 3) return emit_triangle({loops[0][0], loops[0][1], loops[0][2]});
@@ -462,9 +464,8 @@ bool triangulate_with_holes(std::vector<std::uint32_t> outer, std::vector<std::v
       for (const std::uint32_t v : holes[i])
         if (compare_lex(k.pt(v), k.pt(top[i].first)) > 0) top[i].first = v;
     }
-    std::stable_sort(top.begin(), top.end(), [&](const auto& a, const auto& b) {
-      return compare_lex(k.pt(a.first), k.pt(b.first)) > 0;
-    });
+    std::stable_sort(top.begin(), top.end(),
+                     [&](const auto& a, const auto& b) { return compare_lex(k.pt(a.first), k.pt(b.first)) > 0; });
     std::vector<std::vector<std::uint32_t>> sorted(holes.size());
     for (std::size_t i = 0; i < top.size(); ++i) sorted[i] = std::move(holes[top[i].second]);
     holes = std::move(sorted);

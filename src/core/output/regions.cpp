@@ -44,8 +44,8 @@ PlaneKey canonical(const Plane& p, bool flip) {
   const std::int64_t a = static_cast<std::int64_t>(p.a.raw()), b = static_cast<std::int64_t>(p.b.raw()),
                      c = static_cast<std::int64_t>(p.c.raw());
   const __int128 d = p.d.raw();
-  std::uint64_t g = std::gcd(std::gcd(std::uint64_t(a < 0 ? -a : a), std::uint64_t(b < 0 ? -b : b)),
-                             std::uint64_t(c < 0 ? -c : c));
+  std::uint64_t g =
+      std::gcd(std::gcd(std::uint64_t(a < 0 ? -a : a), std::uint64_t(b < 0 ? -b : b)), std::uint64_t(c < 0 ? -c : c));
   if (g > 1) {
     const unsigned __int128 ud = static_cast<unsigned __int128>(d < 0 ? -d : d);
     g = std::gcd(g, static_cast<std::uint64_t>(ud % g));
@@ -117,9 +117,8 @@ void link_loops(const OutputVertices& verts, const Plane& plane, std::vector<Bou
                 std::size_t last) {
   std::vector<std::uint32_t> order(last - first);
   std::iota(order.begin(), order.end(), static_cast<std::uint32_t>(first));
-  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
-    return std::tie(edges[x].from, x) < std::tie(edges[y].from, y);
-  });
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t x, std::uint32_t y) { return std::tie(edges[x].from, x) < std::tie(edges[y].from, y); });
   std::vector<std::uint32_t> cands;
   for (std::size_t e = first; e < last; ++e) {
     const std::uint32_t b = edges[e].to;
@@ -156,8 +155,8 @@ bool single_piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t>
 /// Writes a single-piece loop's edges, linked, in the order the general path
 /// gives them (by id pair), so both paths produce the same output. `base` is
 /// the index of out[0] in the final edge list.
-void write_single_loop(std::span<const std::uint32_t> loop, std::uint32_t region, std::uint32_t base,
-                       BoundaryEdge* out, std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& slot) {
+void write_single_loop(std::span<const std::uint32_t> loop, std::uint32_t region, std::uint32_t base, BoundaryEdge* out,
+                       std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& slot) {
   const auto n = static_cast<std::uint32_t>(loop.size());
   auto pair_of = [&](std::uint32_t k) {
     const std::uint32_t a = loop[k], b = loop[(k + 1) % n];

@@ -13,8 +13,8 @@ namespace ember::core {
 /// A region: pieces of one oriented plane joined across shared edges (its
 /// pieces are listed in Regions::piece_ids).
 struct Region {
-  Plane plane;                   ///< the oriented support plane (outward normal)
-  std::uint32_t source = 0;      ///< lowest source id among its pieces (provenance)
+  Plane plane;               ///< the oriented support plane (outward normal)
+  std::uint32_t source = 0;  ///< lowest source id among its pieces (provenance)
 };
 
 /// A directed boundary edge of a region (the region lies to its left, seen
@@ -28,7 +28,7 @@ struct BoundaryEdge {
 
 struct Regions {
   std::vector<Region> regions;
-  std::vector<BoundaryEdge> edges;  ///< grouped by region, loops linked by `next`
+  std::vector<BoundaryEdge> edges;        ///< grouped by region, loops linked by `next`
   std::vector<std::uint32_t> edge_begin;  ///< region r owns edges[edge_begin[r] .. edge_begin[r+1])
   /// Output polygon indices by region (flat, so that the many one-piece
   /// regions of a curved result cost no allocation each): region r's pieces

@@ -20,8 +20,7 @@ std::string describe_solid_check(const OperandReport& r) {
     case SolidStatus::SelfIntersecting: {
       return "not solid: self-intersecting (" +
              std::string(self_intersection_count_is_lower_bound(r) ? "at least " : "") +
-             std::to_string(r.self_intersecting_pairs) +
-             " triangle pairs meet beyond a shared vertex or edge)";
+             std::to_string(r.self_intersecting_pairs) + " triangle pairs meet beyond a shared vertex or edge)";
     }
     case SolidStatus::Misoriented:
       return "not solid: inconsistent orientation (" + std::to_string(r.misoriented_components) +

@@ -67,17 +67,20 @@ void edge_interior_vertices(const Plane& support, std::uint32_t a, std::uint32_t
   int axis = -1, dir = 0;
   found.clear();
   const SegmentFilter near(verts.rounded[a], verts.rounded[b]);
-  index.for_each_near_segment(verts.rounded[a], verts.rounded[b], [&](std::uint32_t v) {
-    if (v == a || v == b || near.clearly_off(verts.rounded[v])) return;
-    const Point& x = verts.exact[v];
-    if (classify(x, support) != 0 || orient2d_dropped(pa, pb, x, dominant_axis(support)) != 0) return;
-    if (axis < 0) {
-      axis = 0;
-      while (axis < 2 && compare_coord(pa, pb, axis) == 0) ++axis;
-      dir = compare_coord(pa, pb, axis);  // a != b: not 0
-    }
-    if (compare_coord(pa, x, axis) == dir && compare_coord(x, pb, axis) == dir) found.push_back(v);
-  }, part);
+  index.for_each_near_segment(
+      verts.rounded[a], verts.rounded[b],
+      [&](std::uint32_t v) {
+        if (v == a || v == b || near.clearly_off(verts.rounded[v])) return;
+        const Point& x = verts.exact[v];
+        if (classify(x, support) != 0 || orient2d_dropped(pa, pb, x, dominant_axis(support)) != 0) return;
+        if (axis < 0) {
+          axis = 0;
+          while (axis < 2 && compare_coord(pa, pb, axis) == 0) ++axis;
+          dir = compare_coord(pa, pb, axis);  // a != b: not 0
+        }
+        if (compare_coord(pa, x, axis) == dir && compare_coord(x, pb, axis) == dir) found.push_back(v);
+      },
+      part);
   if (found.size() < 2) return;
   std::sort(found.begin(), found.end());
   found.erase(std::unique(found.begin(), found.end()), found.end());
@@ -86,7 +89,6 @@ void edge_interior_vertices(const Plane& support, std::uint32_t a, std::uint32_t
     return dir < 0 ? c < 0 : c > 0;
   });
 }
-
 
 /// The operand o when pair `run` is the edge between exactly two whole
 /// input triangles of solid operand o, on a manifold edge of o; -1
@@ -144,7 +146,6 @@ EdgePairs group_edges_by_pair(const Cycles& corners, std::span<const OutputPolyg
   return g;
 }
 
-
 namespace {
 /// Whether index_output_vertices orders cells by operand (and step 2 uses it).
 bool search_by_operand(const InputTopology* topology) {
@@ -160,7 +161,8 @@ VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const Ou
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 1024), [&](const auto& r) {
     for (std::size_t p = r.begin(); p != r.end(); ++p)
       if (!polys[p].settled)
-        for (const std::uint32_t v : verts.corners[p]) std::atomic_ref<char>(wanted[v]).store(1, std::memory_order_relaxed);
+        for (const std::uint32_t v : verts.corners[p])
+          std::atomic_ref<char>(wanted[v]).store(1, std::memory_order_relaxed);
   });
   std::vector<std::uint32_t> everyone;
   for (std::uint32_t v = 0; v < wanted.size(); ++v)
@@ -179,8 +181,8 @@ VertexIndex index_output_vertices(std::span<const OutputPolygon> polys, const Ou
     for (std::size_t p = r.begin(); p != r.end(); ++p)
       if (!polys[p].settled)
         for (const std::uint32_t v : verts.corners[p])
-          std::atomic_ref<std::uint8_t>(used_by[v]).fetch_or(static_cast<std::uint8_t>(1u << polys[p].operand),
-                                                             std::memory_order_relaxed);
+          std::atomic_ref<std::uint8_t>(used_by[v])
+              .fetch_or(static_cast<std::uint8_t>(1u << polys[p].operand), std::memory_order_relaxed);
   });
   constexpr std::uint8_t kClass[4] = {0, 2, 0, 1};  // by used_by; 0 (unused) cannot occur
   std::vector<std::uint8_t> member_class(everyone.size());
@@ -240,7 +242,8 @@ Cycles insert_tjunction_vertices(std::span<const OutputPolygon> polys, const Out
   Cycles out;
   out.offsets.resize(polys.size() + 1, 0);
   for (std::size_t p = 0; p < polys.size(); ++p)
-    out.offsets[p + 1] = out.offsets[p] + static_cast<std::uint32_t>(grown[p].empty() ? corners[p].size() : grown[p].size());
+    out.offsets[p + 1] =
+        out.offsets[p] + static_cast<std::uint32_t>(grown[p].empty() ? corners[p].size() : grown[p].size());
   out.ids.resize(out.offsets.back());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, polys.size(), 256), [&](const auto& r) {
     for (std::size_t p = r.begin(); p != r.end(); ++p) {

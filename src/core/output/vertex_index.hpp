@@ -40,7 +40,8 @@ class SegmentFilter {
  public:
   SegmentFilter(const Vec3d& ra, const Vec3d& rb)
       : ra_(ra),
-        m_(std::max({std::fabs(ra.x), std::fabs(ra.y), std::fabs(ra.z), std::fabs(rb.x), std::fabs(rb.y), std::fabs(rb.z)})),
+        m_(std::max(
+            {std::fabs(ra.x), std::fabs(ra.y), std::fabs(ra.z), std::fabs(rb.x), std::fabs(rb.y), std::fabs(rb.z)})),
         dx_(rb.x - ra.x),
         dy_(rb.y - ra.y),
         dz_(rb.z - ra.z) {
@@ -86,8 +87,8 @@ class SegmentTube {
   /// With `pad` (at least 2^-40 M): the box grown by pad instead, for
   /// positions within pad - 2^-48 M of the segment (VertexIndex's frame).
   SegmentTube(const Vec3d& ra, const Vec3d& rb, double pad = 0) {
-    const double m = std::max({std::fabs(ra.x), std::fabs(ra.y), std::fabs(ra.z), std::fabs(rb.x), std::fabs(rb.y),
-                               std::fabs(rb.z)});
+    const double m = std::max(
+        {std::fabs(ra.x), std::fabs(ra.y), std::fabs(ra.z), std::fabs(rb.x), std::fabs(rb.y), std::fabs(rb.z)});
     usable_ = m >= 0x1p-400 && m <= 0x1p400;
     pad_ = std::max(0x1p-40 * m, pad);
     start_ = {ra.x, ra.y, ra.z};
@@ -431,8 +432,8 @@ class VertexIndex {
   FrameAxes frame_{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};  ///< rows: the frame's axes in world coordinates
   std::vector<Node> nodes_;
   std::vector<std::uint8_t> class_;  ///< per member (cell order): its class
-  std::vector<std::uint32_t> ids_;  ///< member i is output vertex ids_[i] (in cell order once built)
-  std::vector<Vec3d> pos_;          ///< its rounded position in the frame (to_frame)
+  std::vector<std::uint32_t> ids_;   ///< member i is output vertex ids_[i] (in cell order once built)
+  std::vector<Vec3d> pos_;           ///< its rounded position in the frame (to_frame)
   Vec3d lo_{}, hi_{};
   struct Bounds {  ///< empty: lo > hi
     Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
@@ -441,7 +442,7 @@ class VertexIndex {
   double cell_ = 1, inverse_cell_ = 1;
   struct Slot {
     std::uint64_t key = 0;
-    std::uint32_t begin = 0, end = 0;  ///< run of members (cell order); end == 0: empty slot
+    std::uint32_t begin = 0, end = 0;      ///< run of members (cell order); end == 0: empty slot
     std::uint32_t class1 = 0, class2 = 0;  ///< where classes 1 and 2 begin in the run (no tree)
     std::uint32_t tree = kNoTree;          ///< a crowded cell's kd-tree root (its run in tree order)
   };

@@ -76,7 +76,8 @@ class Search {
   void flush(std::size_t& examined) {
     if (examined == 0) return;
     const std::size_t total = examined_.fetch_add(examined, std::memory_order_relaxed) + examined;
-    if (total > budget_ || (total > counting_budget_ && found_.load(std::memory_order_relaxed) > 0)) gave_up_.store(true);
+    if (total > budget_ || (total > counting_budget_ && found_.load(std::memory_order_relaxed) > 0))
+      gave_up_.store(true);
     examined = 0;
   }
 
@@ -115,8 +116,9 @@ class Search {
       // Each combination compiled apart: the frame's test costs nothing where
       // an operand has none (bunny pair: 0.6 M instructions as a branch).
 #if EMBER_WIDE_LANES
-      if (wide_) return frame_ ? subtree_cross_wide<true>(a, b, depth, examined)
-                               : subtree_cross_wide<false>(a, b, depth, examined);
+      if (wide_)
+        return frame_ ? subtree_cross_wide<true>(a, b, depth, examined)
+                      : subtree_cross_wide<false>(a, b, depth, examined);
 #endif
       return frame_ ? subtree_cross_with<false, true>(a, b, depth, examined)
                     : subtree_cross_with<false, false>(a, b, depth, examined);
@@ -135,7 +137,8 @@ class Search {
   /// spills). Both sides descend together: at most three pending pairs per
   /// level, and a tree of fewer than 2^32 triangles has under 30 levels.
   template <bool Wide, bool Framed>
-  [[gnu::always_inline]] inline void subtree_cross_with(std::size_t a, std::size_t b, int depth, std::size_t& examined) {
+  [[gnu::always_inline]] inline void subtree_cross_with(std::size_t a, std::size_t b, int depth,
+                                                        std::size_t& examined) {
     struct NodePair {
       std::size_t a, b;
       int depth;

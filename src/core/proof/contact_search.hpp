@@ -44,9 +44,9 @@ struct ContactSearchResult {
 /// means "not solid" and one without gives no verdict, so only the report
 /// (count, reason) can differ, never the Boolean's path or output. Parallel
 /// (oneTBB) in the caller's arena.
-/// `tree`, if given, is the tree over tris' boxes (TriangleTree(box_of(tris[i].p)...)), built once for the proof and the solid path;
-/// `diagonals`, if given with it, its leaves' diagonal extents (OperandTrees).
-/// `found_one`, if given, is set when the first pair is found (the count goes on).
+/// `tree`, if given, is the tree over tris' boxes (TriangleTree(box_of(tris[i].p)...)), built once for the proof and
+/// the solid path; `diagonals`, if given with it, its leaves' diagonal extents (OperandTrees). `found_one`, if given,
+/// is set when the first pair is found (the count goes on).
 ContactSearchResult find_contacts(std::span<const ContactTriangle> tris, std::size_t max_pairs,
                                   const TriangleTree* tree = nullptr, std::atomic<bool>* found_one = nullptr,
                                   const LeafDiagonals* diagonals = nullptr);

@@ -15,9 +15,9 @@
 namespace ember::core {
 
 struct SolidProof {
-  std::vector<std::uint32_t> proven;     ///< the operands the proof decided, increasing
-  std::vector<SolidFinding> findings;    ///< one per entry of `proven`
-  bool speculated = false;               ///< `alongside` ran beside the proof
+  std::vector<std::uint32_t> proven;           ///< the operands the proof decided, increasing
+  std::vector<SolidFinding> findings;          ///< one per entry of `proven`
+  bool speculated = false;                     ///< `alongside` ran beside the proof
   std::chrono::steady_clock::time_point done;  ///< when the proof ended
 };
 

@@ -23,7 +23,6 @@
 
 namespace ember::core {
 
-
 namespace {
 
 /// The ids of the operand's polygons, in soup order, selected in parallel
@@ -31,13 +30,14 @@ namespace {
 /// ~20 ms of each operand's proof at any thread count).
 FillVector<std::uint32_t> operand_members(const Soup& soup, std::uint32_t operand) {
   return parallel_select<std::uint32_t>(
-      soup.size(), [&](std::size_t i) { return soup[i].operand == operand; }, [&](std::size_t i) { return soup[i].id; });
+      soup.size(), [&](std::size_t i) { return soup[i].operand == operand; },
+      [&](std::size_t i) { return soup[i].id; });
 }
 
 }  // namespace
 
-SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint32_t operand,
-                         const OperandTrees* trees, std::atomic<bool>* intersecting) {
+SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint32_t operand, const OperandTrees* trees,
+                         std::atomic<bool>* intersecting) {
   assert(grid.normals.size() == grid.corners.size());
   // With the trees, the operand's triangles are its range of ids; without,
   // the proof scans the soup anyway (below), so it is built now.
@@ -45,9 +45,11 @@ SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint
   if (trees) {
     const std::uint32_t first = root.operand_begin()[operand];
     members.resize(root.operand_begin()[operand + 1] - first);  // every entry written here
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 16384), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t i = r.begin(); i != r.end(); ++i) members[i] = first + static_cast<std::uint32_t>(i);
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 16384),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i != r.end(); ++i)
+                          members[i] = first + static_cast<std::uint32_t>(i);
+                      });
   } else {
     members = operand_members(root.with_soup().soup, operand);
   }
@@ -57,12 +59,11 @@ SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint
   // Counting the contacts (not just finding one) costs at most one full
   // search, the price of proving a solid operand; the count tells the user why.
   FillVector<ContactTriangle> tris(members.size());  // every entry written below
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 4096),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t i = r.begin(); i != r.end(); ++i)
-                        tris[i] = contact_triangle(grid.corners[members[i]], grid.normals[members[i]],
-                                                   grid.vertex_ids[members[i]]);
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, members.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i)
+          tris[i] = contact_triangle(grid.corners[members[i]], grid.normals[members[i]], grid.vertex_ids[members[i]]);
+      });
   // tris holds all of the operand's triangles, as a star must. They are
   // the grid's triangles members[0] .. members[0] + size - 1 (an operand's
   // polygons are consecutive in the root soup), whose neighbours are stars'
@@ -70,12 +71,13 @@ SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint
   // neighbour and certify nothing, never too much.
   const bool consecutive = members.back() - members.front() + 1 == members.size();
   certify_embedded_stars(tris,
-                         consecutive ? std::span<const std::array<std::uint32_t, 3>>(grid.neighbors.data() + members.front(),
-                                                                                      members.size())
+                         consecutive ? std::span<const std::array<std::uint32_t, 3>>(
+                                           grid.neighbors.data() + members.front(), members.size())
                                      : std::span<const std::array<std::uint32_t, 3>>(),
                          members.front());
   if (tree && tree->size() != tris.size()) tree = nullptr;  // not this operand's: build one (and its diagonals)
-  const ContactSearchResult contacts = find_contacts(tris, OperandReport::kMaxReportedPairs, tree, intersecting, diagonals);
+  const ContactSearchResult contacts =
+      find_contacts(tris, OperandReport::kMaxReportedPairs, tree, intersecting, diagonals);
   tris = {};
   if (contacts.pairs > 0) return {SolidVerdict::SelfIntersecting, contacts.pairs, 0, contacts.complete};
   if (contacts.gave_up) return {SolidVerdict::TooComplex, 0, 0};
@@ -87,13 +89,14 @@ SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint
   const auto member = [&](std::size_t i) { return members[i]; };
   if (consecutive) {  // the operand's range of ids alone
     const FillVector<std::uint32_t> component = neighbour_components(grid, members.front(), members.size());
-    reps = parallel_select<std::uint32_t>(members.size(), [&](std::size_t i) { return component[i] == members[i]; }, member);
+    reps = parallel_select<std::uint32_t>(
+        members.size(), [&](std::size_t i) { return component[i] == members[i]; }, member);
   } else {
     std::vector<char> keep(grid.neighbors.size(), 0);
     for (const std::uint32_t m : members) keep[m] = 1;
     const FillVector<std::uint32_t> component = neighbour_components(grid, keep);
-    reps = parallel_select<std::uint32_t>(members.size(), [&](std::size_t i) { return component[members[i]] == members[i]; },
-                                          member);
+    reps = parallel_select<std::uint32_t>(
+        members.size(), [&](std::size_t i) { return component[members[i]] == members[i]; }, member);
   }
   // With the operand's tree (its item i is triangle members.front() + i),
   // one tree query per trace; a trace that found no non-degenerate path
@@ -115,8 +118,9 @@ SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint
     if (own_tree) {
       TraceScratch sc;
       Polygon built;
-      traced = own_winding_from_outside(grid.corners, *own_tree, members.front(), root.box(), root.operands(),
-                                        built_polygon(rep, built), operand, std::uint64_t{rep.id} << 20, front, back, sc);
+      traced =
+          own_winding_from_outside(grid.corners, *own_tree, members.front(), root.box(), root.operands(),
+                                   built_polygon(rep, built), operand, std::uint64_t{rep.id} << 20, front, back, sc);
     }
     if (!traced && scans_affordable) {
       Wnv w_front, w_back;
@@ -131,7 +135,8 @@ SolidFinding check_solid(RootProblem& root, const GridTriangles& grid, std::uint
     }
   });
   SolidFinding finding;
-  finding.misoriented_components = static_cast<std::size_t>(std::count(verdict.begin(), verdict.end(), SolidVerdict::WrongWinding));
+  finding.misoriented_components =
+      static_cast<std::size_t>(std::count(verdict.begin(), verdict.end(), SolidVerdict::WrongWinding));
   if (finding.misoriented_components > 0) {
     finding.verdict = SolidVerdict::WrongWinding;
   } else if (std::count(verdict.begin(), verdict.end(), SolidVerdict::Unclassified) > 0) {

@@ -27,10 +27,10 @@ struct OperandTrees;
 
 enum class SolidVerdict {
   Solid,
-  SelfIntersecting,   ///< two triangles meet beyond a shared vertex or edge (or touch)
-  WrongWinding,       ///< some component has winding != 0 in front (nested, inverted)
-  TooComplex,         ///< beyond the proof's work budget (many components, piles of slivers): not decided
-  Unclassified,       ///< no valid trace path (not decided)
+  SelfIntersecting,  ///< two triangles meet beyond a shared vertex or edge (or touch)
+  WrongWinding,      ///< some component has winding != 0 in front (nested, inverted)
+  TooComplex,        ///< beyond the proof's work budget (many components, piles of slivers): not decided
+  Unclassified,      ///< no valid trace path (not decided)
 };
 
 /// The verdict and, for the user, how much evidence was found against it.

@@ -37,7 +37,8 @@ int corner_at(const ContactTriangle& t, std::uint32_t v) {
 /// exactly `valence` steps: earlier, or never, means v has another fan or an
 /// open or non-manifold edge.
 bool star_is_embedded(std::span<const ContactTriangle> tris, std::span<const std::array<std::uint32_t, 3>> neighbours,
-                      std::uint32_t first_id, std::uint32_t t0, int k0, std::size_t valence, std::vector<Spoke>& spokes) {
+                      std::uint32_t first_id, std::uint32_t t0, int k0, std::size_t valence,
+                      std::vector<Spoke>& spokes) {
   if (valence < 3 || valence > kMaxValence) return false;
   spokes.resize(std::max(spokes.size(), valence));
   const std::uint32_t v = tris[t0].id[k0];
@@ -70,7 +71,8 @@ bool star_is_embedded(std::span<const ContactTriangle> tris, std::span<const std
     if (i128(d[0]) * n[0] + i128(d[1]) * n[1] + i128(d[2]) * n[2] <= 0) return false;
     if (i == 0) continue;
     const std::array<std::int64_t, 3>& e = spokes[i].e;
-    const std::int64_t c0 = e0[1] * e[2] - e0[2] * e[1], c1 = e0[2] * e[0] - e0[0] * e[2], c2 = e0[0] * e[1] - e0[1] * e[0];
+    const std::int64_t c0 = e0[1] * e[2] - e0[2] * e[1], c1 = e0[2] * e[0] - e0[0] * e[2],
+                       c2 = e0[0] * e[1] - e0[1] * e[0];
     // d . (e_0 x e) = 0: e's projection is parallel to e_0's, at pi or at a
     // full turn, both in the closed lower half.
     const bool upper = i128(d[0]) * c0 + i128(d[1]) * c1 + i128(d[2]) * c2 > 0;
@@ -86,15 +88,14 @@ void certify_embedded_stars(std::span<ContactTriangle> tris, std::span<const std
                             std::uint32_t first_id) {
   const std::size_t n = tris.size();
   if (n == 0 || neighbours.size() != n) return;
-  const std::uint32_t vertices =
-      1 + tbb::parallel_reduce(
-              tbb::blocked_range<std::size_t>(0, n, 4096), std::uint32_t{0},
-              [&](const tbb::blocked_range<std::size_t>& r, std::uint32_t top) {
-                for (std::size_t t = r.begin(); t != r.end(); ++t)
-                  top = std::max({top, tris[t].id[0], tris[t].id[1], tris[t].id[2]});
-                return top;
-              },
-              [](std::uint32_t x, std::uint32_t y) { return std::max(x, y); });
+  const std::uint32_t vertices = 1 + tbb::parallel_reduce(
+                                         tbb::blocked_range<std::size_t>(0, n, 4096), std::uint32_t{0},
+                                         [&](const tbb::blocked_range<std::size_t>& r, std::uint32_t top) {
+                                           for (std::size_t t = r.begin(); t != r.end(); ++t)
+                                             top = std::max({top, tris[t].id[0], tris[t].id[1], tris[t].id[2]});
+                                           return top;
+                                         },
+                                         [](std::uint32_t x, std::uint32_t y) { return std::max(x, y); });
   // Per vertex: its number of corners, and one of them (3 * triangle + k).
   // Which one depends on the schedule; the certificate does not (the walk
   // from any corner of a cycle meets the same cycle, and its winding number
@@ -105,7 +106,8 @@ void certify_embedded_stars(std::span<ContactTriangle> tris, std::span<const std
       for (std::uint32_t k = 0; k < 3; ++k) {
         const std::uint32_t id = tris[t].id[k];
         std::atomic_ref<std::uint32_t>(valence[id]).fetch_add(1, std::memory_order_relaxed);
-        std::atomic_ref<std::uint32_t>(some[id]).store(static_cast<std::uint32_t>(3 * t + k), std::memory_order_relaxed);
+        std::atomic_ref<std::uint32_t>(some[id]).store(static_cast<std::uint32_t>(3 * t + k),
+                                                       std::memory_order_relaxed);
       }
   });
   std::vector<char> embedded(vertices, 0);

@@ -29,7 +29,8 @@ SolidRoute run_solid_route(SolveSetup& setup, const SolveContext& ctx, const std
   if (setup.direct_allowed)
     route.mesh = direct_solid_mesh(grid, setup.root->box(), ctx, *setup.trees, partners, in.quantizer,
                                    in.triangles.sources, *in.topology, stop);
-  if (!route.mesh && !stop.load()) route.polys = solve_solid(grid, setup.root->box(), ctx, *setup.trees, abandon, &partners);
+  if (!route.mesh && !stop.load())
+    route.polys = solve_solid(grid, setup.root->box(), ctx, *setup.trees, abandon, &partners);
   return route;
 }
 
@@ -41,8 +42,8 @@ RouteResult run_route(SolveSetup& setup, std::optional<SolidRoute> speculative) 
   const bool all_solid = std::all_of(setup.ctx.solid.begin(), setup.ctx.solid.end(), [](char s) { return s != 0; });
   if (!all_solid) setup.trees.reset();  // the subdivision does not use them
   if (setup.trees) {
-    SolidRoute route = speculative && !speculative->gave_up ? std::move(*speculative)
-                                                            : run_solid_route(setup, setup.ctx, nullptr);
+    SolidRoute route =
+        speculative && !speculative->gave_up ? std::move(*speculative) : run_solid_route(setup, setup.ctx, nullptr);
     result.solid_path = route.mesh || route.polys;
     if (route.mesh) {
       result.mesh = std::move(route.mesh);

@@ -38,8 +38,8 @@ SolidRoute run_solid_route(SolveSetup& setup, const SolveContext& ctx, const std
 struct RouteResult {
   std::vector<OutputPolygon> polys;
   std::optional<MeshOutput> mesh;
-  bool solid_path = false;   ///< the solid path solved it
-  bool direct_mesh = false;  ///< the direct route made the mesh
+  bool solid_path = false;           ///< the solid path solved it
+  bool direct_mesh = false;          ///< the direct route made the mesh
   std::size_t merged_triangles = 0;  ///< general path: input triangles put back together whole
 };
 

@@ -27,8 +27,8 @@ std::unique_ptr<SolveSetup> set_up_solve(PreparedInput& input, Operation op, con
   s->input = &input;
   s->indicator = options.indicator ? options.indicator : indicator_for(op, operands, options.min_k);
   // Its soup is built where the general path or a proof's scan needs it.
-  s->root = std::make_unique<RootProblem>(root_shell(input, operands), input.triangles.grid,
-                                          input.triangles.operand_begin);
+  s->root =
+      std::make_unique<RootProblem>(root_shell(input, operands), input.triangles.grid, input.triangles.operand_begin);
   SolveContext& ctx = s->ctx;
   ctx.operands = operands;
   ctx.inside = [&indicator = s->indicator](const Wnv& w) { return indicator(WindingVector(w.data(), w.size())); };

@@ -33,14 +33,17 @@ namespace ember::core {
 /// 2^26 for a unit axis: the bounds fit int32.
 /// Always inlined: the compiler's choice flips with unrelated changes to the
 /// solid path (as a call, EMBER case 16's frame samples cost 1.2 M more).
-[[gnu::always_inline]] inline ProjectedExtent<3> frame_extent(const std::array<IntPoint, 3>& p, const FrameAxes& frame) {
-  static_assert(kCoordLimit <= (std::int64_t{1} << 25), "frame projections: error < 2^-24, |bounds| < 2^26 + 3 (int32)");
+[[gnu::always_inline]] inline ProjectedExtent<3> frame_extent(const std::array<IntPoint, 3>& p,
+                                                              const FrameAxes& frame) {
+  static_assert(kCoordLimit <= (std::int64_t{1} << 25),
+                "frame projections: error < 2^-24, |bounds| < 2^26 + 3 (int32)");
   ProjectedExtent<3> e;
   for (std::size_t a = 0; a < 3; ++a) {
     const std::array<double, 3>& u = frame[a];
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const IntPoint& q : p) {
-      const double s = u[0] * static_cast<double>(q.x) + u[1] * static_cast<double>(q.y) + u[2] * static_cast<double>(q.z);
+      const double s =
+          u[0] * static_cast<double>(q.x) + u[1] * static_cast<double>(q.y) + u[2] * static_cast<double>(q.z);
       lo = std::min(lo, s);
       hi = std::max(hi, s);
     }

@@ -54,7 +54,8 @@ class LeafVertexIds {
       }
     }
     const auto one_or_two = [](__m128i count) {
-      const __m128i m = _mm_or_si128(_mm_cmpeq_epi32(count, _mm_set1_epi32(-1)), _mm_cmpeq_epi32(count, _mm_set1_epi32(-2)));
+      const __m128i m =
+          _mm_or_si128(_mm_cmpeq_epi32(count, _mm_set1_epi32(-1)), _mm_cmpeq_epi32(count, _mm_set1_epi32(-2)));
       return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(m)));
     };
     const auto any = [](__m128i count) {

@@ -114,7 +114,7 @@ Straddle straddle(const int (&s)[3]) {
 /// at its plane tests, which stay lean without them (inlined, pair019's
 /// broad phases took 3% more instructions).
 [[gnu::noinline]] bool straddling_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b,
-                               const int (&sa)[3], const int (&sb)[3]) {
+                                                 const int (&sa)[3], const int (&sb)[3]) {
   const Straddle ca = straddle(sa), cb = straddle(sb);
   // ca.flip turns b's plane (swap b's last two), cb.flip turns a's.
   const IntPoint& p1 = a[ca.alone];
@@ -209,7 +209,7 @@ bool triangles_meet_improperly(const ContactTriangle& ta, const ContactTriangle&
     int i = 0, j = 0;
     while (a_shared[i]) ++i;
     while (b_shared[j]) ++j;
-    if (side_of_a(b[j]) != 0) return false;  // not coplanar: they meet exactly along the shared edge
+    if (side_of_a(b[j]) != 0) return false;        // not coplanar: they meet exactly along the shared edge
     const int e0 = (i + 1) % 3, e1 = (i + 2) % 3;  // the shared edge, as in a
     const Projection pr(dominant_axis(ta.n));
     return sign(pr.orient(a[e0], a[e1], a[i])) == sign(pr.orient(a[e0], a[e1], b[j]));

@@ -33,9 +33,7 @@ bool beside_plane(const std::array<IntPoint, 3>& a, const std::array<std::int64_
 /// The signs (-1, 0, 1) of a triangle's three corners against a plane.
 struct CornerSigns {
   int s[3];
-  bool strictly_one_side() const {
-    return (s[0] > 0 && s[1] > 0 && s[2] > 0) || (s[0] < 0 && s[1] < 0 && s[2] < 0);
-  }
+  bool strictly_one_side() const { return (s[0] > 0 && s[1] > 0 && s[2] > 0) || (s[0] < 0 && s[1] < 0 && s[2] < 0); }
 };
 
 /// The exact signs of corners against one plane (a triangle's: a corner

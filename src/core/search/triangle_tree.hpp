@@ -47,8 +47,8 @@ struct Box32 {
 
 /// Closed boxes meet (touching counts: triangles that only touch must be tested).
 inline bool overlap(const Box32& a, const Box32& b) {
-  return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] &&
-         a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
+  return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] && a.lo[2] <= b.hi[2] &&
+         b.lo[2] <= a.hi[2];
 }
 
 Box32 box_of(const std::array<IntPoint, 3>& t);
@@ -105,7 +105,8 @@ class TriangleTree {
   void fill_leaf_blocks(std::vector<Block, Alloc>& blocks, Fill&& fill) const {
     blocks.resize((size() + kLeaf - 1) / kLeaf);
     tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t k) {
-      for (std::size_t s = 0; s < kLeaf; ++s) fill(blocks[k], s, k * kLeaf + s < size() ? item(k * kLeaf + s) : kNoItem);
+      for (std::size_t s = 0; s < kLeaf; ++s)
+        fill(blocks[k], s, k * kLeaf + s < size() ? item(k * kLeaf + s) : kNoItem);
     });
   }
   Box32 box(std::size_t slot) const {
@@ -188,9 +189,10 @@ inline unsigned TriangleTree::overlap_mask(std::size_t leaf_node, const Box32& q
   for (int a = 0; a < 3; ++a) {
     const __m128i qlo = _mm_set1_epi32(q.lo[a]), qhi = _mm_set1_epi32(q.hi[a]);
     const auto lanes = [&](const std::int32_t* p) { return _mm_load_si128(reinterpret_cast<const __m128i*>(p)); };
-    miss0 = _mm_or_si128(miss0, _mm_or_si128(_mm_cmpgt_epi32(lanes(b.lo[a]), qhi), _mm_cmpgt_epi32(qlo, lanes(b.hi[a]))));
-    miss1 = _mm_or_si128(miss1,
-                         _mm_or_si128(_mm_cmpgt_epi32(lanes(b.lo[a] + 4), qhi), _mm_cmpgt_epi32(qlo, lanes(b.hi[a] + 4))));
+    miss0 =
+        _mm_or_si128(miss0, _mm_or_si128(_mm_cmpgt_epi32(lanes(b.lo[a]), qhi), _mm_cmpgt_epi32(qlo, lanes(b.hi[a]))));
+    miss1 = _mm_or_si128(
+        miss1, _mm_or_si128(_mm_cmpgt_epi32(lanes(b.lo[a] + 4), qhi), _mm_cmpgt_epi32(qlo, lanes(b.hi[a] + 4))));
   }
   const unsigned miss = static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(miss0))) |
                         static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(miss1))) << 4;

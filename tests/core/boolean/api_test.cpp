@@ -208,7 +208,8 @@ TEST(BooleanApi, StatsCountInputTriangles) {
 
 TEST(BooleanApi, ResultIndependentOfThreadCount) {
   auto [xs, ys] = beams(6);
-  std::vector<std::vector<Mesh>> cases{{xs, ys}, snapped({icosphere({0, 0, 0}, 1, 3), torus({0.5, 0, 0}, 1, 0.4, 32, 16)})};
+  std::vector<std::vector<Mesh>> cases{{xs, ys},
+                                       snapped({icosphere({0, 0, 0}, 1, 3), torus({0.5, 0, 0}, 1, 0.4, 32, 16)})};
   for (const auto& ops : cases)
     for (Op op : {Op::Union, Op::Intersection, Op::Difference}) {
       BooleanOptions one, two, all;

@@ -28,7 +28,8 @@ bool has_face_in_plane(const Mesh& m, int axis, double value) {
 
 // ---- identical operands -----------------------------------------------------
 TEST(CornerCases, IdenticalBoxesUnionAndIntersectionEqualTheOperand) {
-  for (const Mesh& a : {box({0, 0, 0}, {3, 2, 5}), box_quads({0, 0, 0}, {3, 2, 5}), tessellated_box({0, 0, 0}, {3, 2, 5}, 3)}) {
+  for (const Mesh& a :
+       {box({0, 0, 0}, {3, 2, 5}), box_quads({0, 0, 0}, {3, 2, 5}), tessellated_box({0, 0, 0}, {3, 2, 5}, 3)}) {
     std::vector<Mesh> ops{a, a};
     auto u = run_checked(ops, Op::Union, {}, 0);
     auto i = run_checked(ops, Op::Intersection, {}, 0);
@@ -212,7 +213,8 @@ TEST(CornerCases, NestedShellsAloneFollowWindingNumbers) {
   EXPECT_EQ(surface_area(shell.mesh), 96.0 + 24.0);
   auto inner = run_checked(ops, Op::Union, with_indicator([](WindingVector w) { return w[0] >= 2; }), 0);
   EXPECT_EQ(volume(inner.mesh), 8.0);
-  auto m = membership_check(ops, [](WindingVector w) { return w[0] == 1; }, shell.mesh, 300, 7);
+  auto m = membership_check(
+      ops, [](WindingVector w) { return w[0] == 1; }, shell.mesh, 300, 7);
   EXPECT_EQ(m.mismatches, 0) << m.first;
 }
 

@@ -33,7 +33,8 @@ TEST(ExactVolumes, OverlappingBoxesAllOperations) {
     EXPECT_EQ(provenance_plane_violations(ops, r), 0);
     // Exact results keep exact coordinates: every output vertex is a half
     // integer or integer (here: integers).
-    for (const Vec3d& p : r.mesh.vertices) EXPECT_TRUE(p.x == std::floor(p.x) && p.y == std::floor(p.y) && p.z == std::floor(p.z));
+    for (const Vec3d& p : r.mesh.vertices)
+      EXPECT_TRUE(p.x == std::floor(p.x) && p.y == std::floor(p.y) && p.z == std::floor(p.z));
   }
 }
 
@@ -48,7 +49,8 @@ TEST(ExactVolumes, QuadAndTriangleInputsGiveTheSameVolumes) {
 
 TEST(ExactVolumes, DyadicCoordinatesSurviveExactly) {
   std::vector<Mesh> ops{box({0.25, 0.5, -0.75}, {1.5, 1.25, 0.5}), box({1.0, 0.75, 0.0}, {2.125, 3.5, 1.0})};
-  std::vector<std::vector<Box>> boxes{{{{0.25, 0.5, -0.75}, {1.5, 1.25, 0.5}}}, {{{1.0, 0.75, 0.0}, {2.125, 3.5, 1.0}}}};
+  std::vector<std::vector<Box>> boxes{{{{0.25, 0.5, -0.75}, {1.5, 1.25, 0.5}}},
+                                      {{{1.0, 0.75, 0.0}, {2.125, 3.5, 1.0}}}};
   for (Op op : {Op::Union, Op::Intersection, Op::Difference, Op::Xor}) {
     auto r = run_checked(ops, op, {}, 0);
     EXPECT_EQ(volume(r.mesh), voxel_volume(boxes, reference_indicator(op, 2), 0.125)) << "op " << int(op);
@@ -77,8 +79,11 @@ TEST(ExactVolumes, IteratedBinaryEqualsNaryOnBoxes) {
 }
 
 TEST(ExactVolumes, NaryBoxesAgainstVoxels) {
-  std::vector<std::vector<Box>> boxes{{{{0, 0, 0}, {4, 4, 4}}}, {{{2, 1, 1}, {6, 3, 3}}}, {{{1, 3, 0}, {3, 7, 2}}},
-                                      {{{-1, -1, 2}, {1, 1, 5}}}, {{{1, 1, 1}, {3, 3, 5}}}};
+  std::vector<std::vector<Box>> boxes{{{{0, 0, 0}, {4, 4, 4}}},
+                                      {{{2, 1, 1}, {6, 3, 3}}},
+                                      {{{1, 3, 0}, {3, 7, 2}}},
+                                      {{{-1, -1, 2}, {1, 1, 5}}},
+                                      {{{1, 1, 1}, {3, 3, 5}}}};
   auto ops = box_meshes(boxes);
   for (Op op : {Op::Union, Op::Intersection, Op::Difference, Op::Xor})
     EXPECT_EQ(volume(run_checked(ops, op, {}, 0).mesh), voxel_volume(boxes, reference_indicator(op, 5))) << int(op);
@@ -100,12 +105,14 @@ std::vector<Pair> curved_pairs() {
                                            rotate(icosphere({0.5, 0.3, -0.2}, 1.0, 2), random_rotation(12))})});
   // Linked tori: the second lies in the xz plane around (0.5, 0, 0); the
   // centre circles come within 0.5 of each other, the tubes are 0.3 thick.
-  p.push_back({"linked_tori", snapped({torus({0, 0, 0}, 1.0, 0.3, 48, 16),
-                                       rotate(torus({0.5, 0, 0}, 1.0, 0.3, 48, 16), Mat3{{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}}})})});
+  p.push_back({"linked_tori",
+               snapped({torus({0, 0, 0}, 1.0, 0.3, 48, 16),
+                        rotate(torus({0.5, 0, 0}, 1.0, 0.3, 48, 16), Mat3{{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}}})})});
   // A cylinder piercing the torus tube, the pair rotated rigidly.
   p.push_back({"torus_cylinder", snapped({rotate(torus({0, 0, 0}, 1.0, 0.4, 40, 20), random_rotation(13)),
                                           rotate(cylinder({0.9, 0, -1.5}, 0.5, 3.0, 32), random_rotation(13))})});
-  p.push_back({"sphere_box", snapped({uv_sphere({0.3, 0.3, 0.3}, 1.0, 32, 16), rotate(box({-0.6, -0.6, -0.6}, {0.6, 0.6, 0.6}), random_rotation(15))})});
+  p.push_back({"sphere_box", snapped({uv_sphere({0.3, 0.3, 0.3}, 1.0, 32, 16),
+                                      rotate(box({-0.6, -0.6, -0.6}, {0.6, 0.6, 0.6}), random_rotation(15))})});
   return p;
 }
 
@@ -198,10 +205,12 @@ TEST(ExactVolumes, CustomIndicatorEqualToIntersection) {
 TEST(ExactVolumes, CustomIndicatorXorOfTwoAndAsymmetricPredicate) {
   auto p = curved_pairs()[0].ops;
   double x = volume(run_checked(p, Op::Xor).mesh);
-  double c = volume(run_checked(p, Op::Union, with_indicator([](WindingVector w) { return (w[0] != 0) != (w[1] != 0); })).mesh);
+  double c = volume(
+      run_checked(p, Op::Union, with_indicator([](WindingVector w) { return (w[0] != 0) != (w[1] != 0); })).mesh);
   EXPECT_TRUE(close_rel(c, x, 1e-12));
   // "B minus A" expressed as an indicator equals Difference with swapped operands.
-  double ba = volume(run_checked(p, Op::Union, with_indicator([](WindingVector w) { return w[1] != 0 && w[0] == 0; })).mesh);
+  double ba =
+      volume(run_checked(p, Op::Union, with_indicator([](WindingVector w) { return w[1] != 0 && w[0] == 0; })).mesh);
   double swapped = volume(run_checked({p[1], p[0]}, Op::Difference).mesh);
   EXPECT_TRUE(close_rel(ba, swapped, 1e-12));
 }
@@ -226,9 +235,12 @@ TEST(ExactVolumes, NaryDifferenceOfSpheres) {
 }
 
 TEST(ExactVolumes, NaryUnionAndIntersectionOfSixShapes) {
-  std::vector<Mesh> ops{icosphere({0, 0, 0}, 1.0, 2),        torus({0, 0, 0}, 1.0, 0.35, 32, 12),
-                        cylinder({0.2, 0.1, -1.2}, 0.5, 2.4, 24), box({-0.5, -0.5, -0.5}, {0.7, 0.7, 0.7}),
-                        icosphere({0.5, 0.2, 0.1}, 0.9, 2),    rotate(box({-0.8, -0.3, -0.3}, {0.8, 0.3, 0.3}), random_rotation(21))};
+  std::vector<Mesh> ops{icosphere({0, 0, 0}, 1.0, 2),
+                        torus({0, 0, 0}, 1.0, 0.35, 32, 12),
+                        cylinder({0.2, 0.1, -1.2}, 0.5, 2.4, 24),
+                        box({-0.5, -0.5, -0.5}, {0.7, 0.7, 0.7}),
+                        icosphere({0.5, 0.2, 0.1}, 0.9, 2),
+                        rotate(box({-0.8, -0.3, -0.3}, {0.8, 0.3, 0.3}), random_rotation(21))};
   snap_to_grid(ops);
   for (Op op : {Op::Union, Op::Intersection, Op::Xor}) {
     auto r = run_checked(ops, op);

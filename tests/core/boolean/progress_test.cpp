@@ -25,8 +25,7 @@ std::vector<Call> record(const BooleanOptions& base) {
   options.progress = [&](std::string_view phase, double fraction) {
     calls.push_back({std::string(phase), fraction, std::this_thread::get_id()});
   };
-  boolean({shapes::torus(1.0, 0.35, 48, 24), shapes::uv_sphere({0.9, 0, 0.2}, 0.6, 32, 16)}, Operation::Union,
-          options);
+  boolean({shapes::torus(1.0, 0.35, 48, 24), shapes::uv_sphere({0.9, 0, 0.2}, 0.6, 32, 16)}, Operation::Union, options);
   return calls;
 }
 

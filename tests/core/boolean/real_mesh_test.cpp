@@ -122,8 +122,9 @@ TEST(RealMeshes, OverlappingPairsInclusionExclusionAndMembership) {
       continue;
     }
     const std::uint64_t seed = 900 + 2 * pairs;
-    std::vector<Mesh> ops{rotate(normalize(fan_triangulate(a)), random_rotation(seed)),
-                          translate(rotate(normalize(fan_triangulate(b)), random_rotation(seed + 1)), {0.12, -0.07, 0.05})};
+    std::vector<Mesh> ops{
+        rotate(normalize(fan_triangulate(a)), random_rotation(seed)),
+        translate(rotate(normalize(fan_triangulate(b)), random_rotation(seed + 1)), {0.12, -0.07, 0.05})};
     for (Mesh& m : ops)
       if (volume(m) < 0) m = reverse_orientation(std::move(m));  // inside-out files
     snap_to_grid(ops);

@@ -22,9 +22,7 @@ std::vector<Mesh> rotated_snapped(std::vector<Mesh> ops, std::uint64_t seed) {
   snap_to_grid(ops);
   return ops;
 }
-double snap_tolerance(const std::vector<Mesh>& ops, double area) {
-  return area * snap_step(max_abs_coordinate(ops));
-}
+double snap_tolerance(const std::vector<Mesh>& ops, double area) { return area * snap_step(max_abs_coordinate(ops)); }
 
 TEST(Robustness, RotatedTouchingCubes) {
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
@@ -156,7 +154,8 @@ TEST(Robustness, FuzzHalfUnitBoxesAgainstVoxels) {
     auto ops = box_meshes(boxes);
     for (Op op : {Op::Union, Op::Difference, Op::Xor}) {
       auto r = run_checked(ops, op, {}, 0);
-      EXPECT_EQ(volume(r.mesh), voxel_volume(boxes, reference_indicator(op, 3), 0.5)) << "iter " << iter << " op " << int(op);
+      EXPECT_EQ(volume(r.mesh), voxel_volume(boxes, reference_indicator(op, 3), 0.5))
+          << "iter " << iter << " op " << int(op);
       EXPECT_EQ(provenance_plane_violations(ops, r), 0);
     }
   }

@@ -12,14 +12,13 @@ using Op = Operation;
 
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
-
 /// An L-shaped prism whose two caps are concave hexagons (one face each).
 Mesh l_prism() {
   Mesh m;
   const double xy[6][2] = {{0, 0}, {3, 0}, {3, 1}, {1, 1}, {1, 3}, {0, 3}};
   for (const double z : {0.0, 1.0})
     for (const auto& p : xy) m.add_vertex({p[0], p[1], z});
-  m.add_face({5, 4, 3, 2, 1, 0});   // bottom, facing -z
+  m.add_face({5, 4, 3, 2, 1, 0});    // bottom, facing -z
   m.add_face({6, 7, 8, 9, 10, 11});  // top, facing +z
   for (std::uint32_t i = 0; i < 6; ++i) {
     const std::uint32_t j = (i + 1) % 6;
@@ -51,8 +50,8 @@ std::int64_t twice_area(std::span<const IntPoint> c, const std::vector<std::arra
 
 TEST(ConcaveFaces, EarClippingCoversTheFaceWithPositiveTriangles) {
   // A comb: concave at three corners; the fan from corner 0 would overlap.
-  const std::vector<IntPoint> comb{{0, 0, 5}, {6, 0, 5}, {6, 4, 5}, {5, 4, 5}, {5, 1, 5},
-                                   {3, 1, 5}, {3, 4, 5}, {2, 4, 5}, {2, 1, 5}, {1, 1, 5}, {1, 4, 5}, {0, 4, 5}};
+  const std::vector<IntPoint> comb{{0, 0, 5}, {6, 0, 5}, {6, 4, 5}, {5, 4, 5}, {5, 1, 5}, {3, 1, 5},
+                                   {3, 4, 5}, {2, 4, 5}, {2, 1, 5}, {1, 1, 5}, {1, 4, 5}, {0, 4, 5}};
   std::vector<std::array<std::uint32_t, 3>> tris;
   core::triangulate_polygon(comb, tris);
   ASSERT_EQ(tris.size(), comb.size() - 2);
@@ -66,7 +65,6 @@ TEST(ConcaveFaces, EarClippingCoversTheFaceWithPositiveTriangles) {
   core::triangulate_polygon(eight, tris);
   EXPECT_EQ(tris, (std::vector<std::array<std::uint32_t, 3>>{{0, 1, 2}, {0, 2, 3}}));
 }
-
 
 }  // namespace
 }  // namespace ember::test

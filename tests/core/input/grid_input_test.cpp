@@ -48,9 +48,9 @@ void check(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Normal& g, Tall
   ++t.checked;
   ++t.verdicts[want + 1];
   if (got != want && t.failed++ < 5)
-    ADD_FAILURE() << "a=(" << a.x << "," << a.y << "," << a.z << ") b=(" << b.x << "," << b.y << "," << b.z
-                  << ") c=(" << c.x << "," << c.y << "," << c.z << ") g=(" << g[0] << "," << g[1] << "," << g[2]
-                  << "): got " << got << ", want " << want;
+    ADD_FAILURE() << "a=(" << a.x << "," << a.y << "," << a.z << ") b=(" << b.x << "," << b.y << "," << b.z << ") c=("
+                  << c.x << "," << c.y << "," << c.z << ") g=(" << g[0] << "," << g[1] << "," << g[2] << "): got "
+                  << got << ", want " << want;
 }
 
 TEST(RoundingChange, AgreesWithTheLongDoubleDefinition) {
@@ -65,15 +65,15 @@ TEST(RoundingChange, AgreesWithTheLongDoubleDefinition) {
     switch (i % 5) {
       case 1: {  // nearly collinear: c on the line ab, pushed off by ~2^-40 of the edge (the area threshold)
         const double s = unit(rng), off = std::ldexp(unit(rng), -40 + (i % 7) - 3);
-        c = {a.x + s * (b.x - a.x) + off * (b.y - a.y), a.y + s * (b.y - a.y) - off * (b.x - a.x), a.z + s * (b.z - a.z)};
+        c = {a.x + s * (b.x - a.x) + off * (b.y - a.y), a.y + s * (b.y - a.y) - off * (b.x - a.x),
+             a.z + s * (b.z - a.z)};
         break;
       }
       case 2:  // two corners equal, or all three
         c = i % 10 == 2 ? a : b;
         if (i % 20 == 2) b = a;
         break;
-      default:
-        break;
+      default: break;
     }
     const std::array<double, 3> n = cross(a, b, c);
     Normal g;
@@ -87,9 +87,7 @@ TEST(RoundingChange, AgreesWithTheLongDoubleDefinition) {
         g = along({n[1] * w[2] - n[2] * w[1], n[2] * w[0] - n[0] * w[2], n[0] * w[1] - n[1] * w[0]}, 50);
         break;
       }
-      case 2:
-        g = {0, 0, 0};
-        break;
+      case 2: g = {0, 0, 0}; break;
       default: {
         std::uniform_int_distribution<std::int64_t> any(-(std::int64_t{1} << 52), std::int64_t{1} << 52);
         g = {any(rng), any(rng), any(rng)};
@@ -110,7 +108,7 @@ TEST(RoundingChange, ExtremeScalesFallBackToTheDefinition) {
     const Vec3d a{0, 0, 0}, b{s, 0, 0}, c{0, s, 0};
     check(a, b, c, up, t);
     check(a, b, c, down, t);
-    check(a, b, Vec3d{s, s, 0}, up, t);  // collinear
+    check(a, b, Vec3d{s, s, 0}, up, t);                      // collinear
     check(a, Vec3d{s, 0, 0}, Vec3d{0, 0x1p-200, 0}, up, t);  // edges of very different lengths
   }
   EXPECT_EQ(t.failed, 0);
@@ -130,7 +128,9 @@ TEST(GridWeld, IdsAreTheRanksOfTheDistinctPositions) {
         m.add_vertex(m.vertices[rng() % m.vertices.size()]);
         continue;
       }
-      const auto at = [&](int range) { return static_cast<double>(static_cast<int>(rng() % static_cast<unsigned>(range))); };
+      const auto at = [&](int range) {
+        return static_cast<double>(static_cast<int>(rng() % static_cast<unsigned>(range)));
+      };
       m.add_vertex(o == 0 ? Vec3d{at(3), at(60), at(40)} : Vec3d{at(1000000), at(1000000), at(1000000)});
     }
     for (int f = 0; f < n; ++f) {  // some vertices stay unused

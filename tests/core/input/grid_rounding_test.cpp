@@ -14,7 +14,6 @@ using Op = Operation;
 
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
-
 TEST(GridLimits, UnitCubeBesideAHugeSlabIsAnErrorNamingOperandCountsAndStep) {
   const Mesh cube = box({0, 0, 0}, {1, 1, 1});
   const Mesh slab = box({-1e30, -1e30, 0.5}, {1e30, 1e30, 1e30});
@@ -61,7 +60,9 @@ TEST(GridLimits, CleanInputsHaveNoQuantizationWarning) {
 // ---- subnormal-range extents are refused ------------------------------
 
 TEST(GridLimits, SubnormalRangeExtentIsRefusedWithAClearMessage) {
-  const std::string msg = error_message([] { (void)Quantizer::fit(std::vector<Vec3d>{{0, 0, 0}, {1e-300, 1e-300, 1e-300}}); });
+  const std::string msg = error_message([] {
+    (void)Quantizer::fit(std::vector<Vec3d>{{0, 0, 0}, {1e-300, 1e-300, 1e-300}});
+  });
   EXPECT_TRUE(has(msg, "too small")) << msg;
   EXPECT_TRUE(has(msg, "scale the model up")) << msg;
   const std::string sub = error_message([] { (void)Quantizer::fit(std::vector<Vec3d>{{0, 0, 0}, {5e-320, 0, 0}}); });
@@ -73,7 +74,6 @@ TEST(GridLimits, SubnormalRangeExtentIsRefusedWithAClearMessage) {
   const Mesh tiny = scale(box({0, 0, 0}, {1, 1, 1}), 1e-300);
   EXPECT_TRUE(has(error_message([&] { (void)boolean({tiny, tiny}, Op::Union); }), "too small"));
 }
-
 
 }  // namespace
 }  // namespace ember::test

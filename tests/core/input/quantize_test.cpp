@@ -211,7 +211,7 @@ TEST(Quantize, ExportNearAndAtRoundingMidpointsIsCorrectlyRounded) {
       const mpq_class mid = (mpq_class(s) + mpq_class(neighbour)) / 2 - mpq_class(mpz_class(static_cast<long>(c)));
       // mid = p / 2^t: W = 2^t K with K random, X = p K + delta.
       const mpz_class den = mid.get_den(), num = mid.get_num();
-      if (den > pow2(40)) continue;  // values whose gap is below 2^-40 of a grid unit
+      if (den > pow2(40)) continue;                   // values whose gap is below 2^-40 of a grid unit
       const mpz_class k = from_u64(rng() >> 24) + 1;  // below 2^40
       const int delta = static_cast<int>(rng() % 5) - 2;
       const mpz_class w = den * k, x = num * k + delta;
@@ -233,8 +233,8 @@ TEST(Quantize, ExportNearAndAtRoundingMidpointsIsCorrectlyRounded) {
     const mpz_class r = (pow2(60) - pow2(m + 6)) * w / pow2(60);  // floor((1 - 2^(m-54)) w)
     for (const int sign : {1, -1}) {
       const mpz_class x = sign * (n * w + r);
-      const Point p = small_point(from_mpz<127>(x).raw(), from_mpz<127>(x).raw(), from_mpz<127>(x).raw(),
-                                  from_mpz<127>(w).raw());
+      const Point p =
+          small_point(from_mpz<127>(x).raw(), from_mpz<127>(x).raw(), from_mpz<127>(x).raw(), from_mpz<127>(w).raw());
       EXPECT_TRUE(exports_correctly(centred, p)) << "m " << m << " sign " << sign;
     }
   }

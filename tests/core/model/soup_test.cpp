@@ -36,7 +36,8 @@ std::array<IntPoint, 3> random_triangle(std::mt19937_64& rng, std::int64_t range
 /// the step to `path`. False when the plane missed the box.
 bool random_split(std::mt19937_64& rng, SoupPolygon& p, SplitPath& path) {
   const int axis = static_cast<int>(rng() % 3);
-  const auto lo = static_cast<std::int64_t>(std::ceil(p.lo[axis])), hi = static_cast<std::int64_t>(std::floor(p.hi[axis]));
+  const auto lo = static_cast<std::int64_t>(std::ceil(p.lo[axis])),
+             hi = static_cast<std::int64_t>(std::floor(p.hi[axis]));
   if (hi < lo) return false;
   const std::int64_t at = lo + static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(hi - lo + 1));
   materialize(p);
@@ -100,7 +101,8 @@ TEST(Soup, FlatApproximationsFilterLinesLikeThePolygons) {
 TEST(Soup, FlatApproximationsMarkExactlyTheGridPoints) {
   std::mt19937_64 rng(12);
   std::vector<std::array<IntPoint, 3>> corners(300);
-  const Soup soup = mixed_soup(rng, corners, [](std::uint32_t i) { return i % 2 == 0 ? std::int64_t{1000} : kCoordLimit; });
+  const Soup soup =
+      mixed_soup(rng, corners, [](std::uint32_t i) { return i % 2 == 0 ? std::int64_t{1000} : kCoordLimit; });
   SoupApprox flat;
   approximate(soup, flat);
   ASSERT_EQ(flat.grid.size(), flat.verts.size());
@@ -124,7 +126,7 @@ TEST(Soup, FlatApproximationsMarkExactlyTheGridPoints) {
       EXPECT_EQ(approx[v][2], static_cast<double>(g->z));
     }
   }
-  EXPECT_GT(grid, 300u);  // corners, whole or kept by the cuts
+  EXPECT_GT(grid, 300u);   // corners, whole or kept by the cuts
   EXPECT_GT(other, 100u);  // and the cuts' new vertices
 }
 
@@ -168,7 +170,7 @@ TEST(Soup, LeafPlaneFilterSignsAgreeWithTheExactTest) {
         }
       }
     }
-    EXPECT_GT(decided, 10 * unsure);  // the filter decides nearly all ...
+    EXPECT_GT(decided, 10 * unsure);     // the filter decides nearly all ...
     EXPECT_GE(unsure, soup.size() * 3);  // ... but never a polygon's own vertices
   }
 }

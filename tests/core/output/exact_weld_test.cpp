@@ -23,8 +23,8 @@ namespace {
 /// corners are not grid points (and repeat: both halves of a cut share them).
 struct WeldCase {
   std::vector<IntPoint> points;
-  std::vector<std::array<IntPoint, 3>> corners;        // by triangle id
-  std::vector<std::array<std::uint32_t, 3>> vertex;    // by triangle id: per-operand welded ids
+  std::vector<std::array<IntPoint, 3>> corners;      // by triangle id
+  std::vector<std::array<std::uint32_t, 3>> vertex;  // by triangle id: per-operand welded ids
   std::vector<OutputPolygon> polys;
 };
 

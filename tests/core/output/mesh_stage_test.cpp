@@ -300,7 +300,16 @@ TEST(MeshStage, ShortLoopsClipTheSameEarsWithTheScanQueue) {
            {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}},
            {{0, 0, 0}, {30, 0, 0}, {30, 10, 0}, {0, 10, 0}},
            {{2, 0, 0}, {4, 0, 0}, {6, 2, 0}, {6, 4, 0}, {4, 6, 0}, {2, 6, 0}, {0, 4, 0}, {0, 2, 0}},
-           {{0, 0, 0}, {12, 0, 0}, {12, 9, 0}, {11, 1, 0}, {9, 9, 0}, {7, 1, 0}, {5, 9, 0}, {3, 1, 0}, {1, 9, 0}, {0, 9, 0}}})
+           {{0, 0, 0},
+            {12, 0, 0},
+            {12, 9, 0},
+            {11, 1, 0},
+            {9, 9, 0},
+            {7, 1, 0},
+            {5, 9, 0},
+            {3, 1, 0},
+            {1, 9, 0},
+            {0, 9, 0}}})
     expect_same_ears_through_the_grid(grid_vertices(pts), closed(pts.size()), triangles);
   std::mt19937 rng(53);
   for (int round = 0; round < 400; ++round) {  // star-shaped, 4 to 16 vertices, radii on a coarse grid

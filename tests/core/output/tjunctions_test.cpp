@@ -57,8 +57,7 @@ TEST(TjunctionSearch, OtherOperandsApexInsideAWholeSolidEdgeIsInserted) {
   // between two whole triangles of a solid operand in different planes
   // (neither region merging nor re-triangulation would touch them): the
   // search looks at the tetrahedron's vertices only and must find it.
-  const std::vector<Mesh> ops{box({0, 0, 0}, {4, 4, 2}),
-                              tetrahedron({2, 0, 0}, {1, -2, -1}, {3, -2, -1}, {2, -1, -2})};
+  const std::vector<Mesh> ops{box({0, 0, 0}, {4, 4, 2}), tetrahedron({2, 0, 0}, {1, -2, -1}, {3, -2, -1}, {2, -1, -2})};
   for (const Operation op : {Operation::Union, Operation::Xor}) {
     const BooleanResult r = run_checked(ops, op);
     EXPECT_EQ(r.stats.solid_operands, 2u);

@@ -27,7 +27,8 @@ std::optional<Point> point_inside(const IntPoint& a, const IntPoint& b, const In
   while (axis < 2 && (axis == 0 ? a.x == b.x : axis == 1 ? a.y == b.y : a.z == b.z)) ++axis;
   const std::int64_t ca = axis == 0 ? a.x : axis == 1 ? a.y : a.z, cb = axis == 0 ? b.x : axis == 1 ? b.y : b.z;
   if (std::abs(cb - ca) < 2) return std::nullopt;
-  const std::int64_t t = std::min(ca, cb) + 1 + static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(std::abs(cb - ca) - 1));
+  const std::int64_t t =
+      std::min(ca, cb) + 1 + static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(std::abs(cb - ca) - 1));
   return intersect(*support, edge_plane(a, b, *support), axis_plane(axis, t));
 }
 
@@ -57,7 +58,8 @@ void for_each_segment_case(std::uint64_t seed, F&& visit) {
       const std::int64_t range = trial % 2 ? limit : 1 + static_cast<std::int64_t>(rng() % 64);
       std::uniform_int_distribution<std::int64_t> at(-limit + range, limit - range), step(-range, range);
       const IntPoint a{at(rng), at(rng), at(rng)};
-      const IntPoint b{a.x + step(rng), a.y + step(rng), a.z + step(rng)}, c{a.x + step(rng), a.y + step(rng), a.z + step(rng)};
+      const IntPoint b{a.x + step(rng), a.y + step(rng), a.z + step(rng)},
+          c{a.x + step(rng), a.y + step(rng), a.z + step(rng)};
       if (const std::optional<Point> v = point_inside(a, b, c, rng))
         visit(SegmentCase{q.dequantize(a), q.dequantize(b), q.dequantize(*v), q.dequantize(c), ordinary, range});
     }
@@ -126,10 +128,13 @@ Tally tally_reports(const VertexIndex& index, const Quantizer& q, const std::vec
   Tally t;
   for (const SegmentQuery& query : queries) {
     std::vector<char> seen(members, 0);
-    index.for_each_near_segment(q.dequantize(query.a), q.dequantize(query.b), [&](std::uint32_t v) {
-      ++t.reported;
-      seen[v] = 1;
-    }, part);
+    index.for_each_near_segment(
+        q.dequantize(query.a), q.dequantize(query.b),
+        [&](std::uint32_t v) {
+          ++t.reported;
+          seen[v] = 1;
+        },
+        part);
     for (const std::uint32_t v : query.on) {
       const bool in_part = part == Part::kAll || (part == Part::kLow ? cls[v] <= 1 : cls[v] >= 1);
       if (!in_part) continue;

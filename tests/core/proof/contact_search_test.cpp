@@ -35,7 +35,7 @@ std::vector<Tri> scattered(std::size_t count, std::int64_t extent, std::int64_t 
   while (tris.size() < count) {
     const IntPoint c{at(rng), at(rng), at(rng)};
     Tri t{c, {c.x + d(rng), c.y + d(rng), c.z + d(rng)}, {c.x + d(rng), c.y + d(rng), c.z + d(rng)}};
-    if (tris.size() % 97 == 5) t[1] = {-c.x, -c.y, c.z};  // a long one
+    if (tris.size() % 97 == 5) t[1] = {-c.x, -c.y, c.z};                         // a long one
     if (tris.size() % 5 == 1 && !tris.empty()) t[0] = tris[tris.size() - 1][1];  // a shared vertex
     if (!degenerate(t)) tris.push_back(t);
   }
@@ -73,8 +73,7 @@ TEST(ContactSearch, DiagonalExtentsOnlyDismissDisjointTriangles) {
   const std::int64_t m = kCoordLimit;
   tris.push_back({{{-m, -m, -m}, {m, m, m}, {m, m, m - 1}}});
   tris.push_back({{{-m, -m, -m + 1}, {m, m, m}, {m - 1, m, m}}});
-  for (std::int64_t c = 0; c < 400; c += 10)
-    tris.push_back({{{0, 0, c}, {1000, -1000, c}, {0, 500, c - 500}}});
+  for (std::int64_t c = 0; c < 400; c += 10) tris.push_back({{{0, 0, c}, {1000, -1000, c}, {0, 500, c - 500}}});
   const std::vector<ContactTriangle> ct = with_ids(tris);
   std::size_t dismissed = 0;
   for (std::size_t i = 0; i < ct.size(); ++i)
@@ -88,7 +87,8 @@ TEST(ContactSearch, DiagonalExtentsOnlyDismissDisjointTriangles) {
   EXPECT_GT(dismissed, 0u);
   std::size_t sliver_pairs = 0;  // the 40 slivers: boxes overlap pairwise, diagonals apart
   for (std::size_t i = ct.size() - 40; i < ct.size(); ++i)
-    for (std::size_t j = i + 1; j < ct.size(); ++j) sliver_pairs += core::diagonally_apart(core::diagonal_extent(ct[i].p()), core::diagonal_extent(ct[j].p()));
+    for (std::size_t j = i + 1; j < ct.size(); ++j)
+      sliver_pairs += core::diagonally_apart(core::diagonal_extent(ct[i].p()), core::diagonal_extent(ct[j].p()));
   EXPECT_EQ(sliver_pairs, 40u * 39u / 2u);
   EXPECT_EQ(core::find_contacts(ct, 1u << 30).pairs, all_pairs_count(ct));
 }
@@ -132,7 +132,8 @@ TEST(ContactSearch, FrameExtentsDismissARodsBoxPairsButNoPairThatMeets) {
             core::diagonally_apart(core::diagonal_extent(ct[i].p()), core::diagonal_extent(ct[j].p())))
           continue;
         ++kept;
-        if (!core::extents_apart(core::frame_extent(ct[i].p(), *frame), core::frame_extent(ct[j].p(), *frame))) continue;
+        if (!core::extents_apart(core::frame_extent(ct[i].p(), *frame), core::frame_extent(ct[j].p(), *frame)))
+          continue;
         ++dismissed;
         EXPECT_FALSE(core::triangles_meet_improperly(ct[i], ct[j])) << i << ", " << j;
         for (const std::uint32_t a : ct[i].id)
@@ -235,7 +236,7 @@ TEST(ContactSearch, StopsCountingAPileOnceAPairDecides) {
     arena.execute([&] { r = core::find_contacts(with_ids(tris), std::size_t{1} << 30); });
     EXPECT_GT(r.pairs, 0u) << threads << " threads";
     EXPECT_LT(r.pairs, crossing) << threads << " threads";  // stopped counting
-    EXPECT_FALSE(r.gave_up) << threads << " threads";      // a pair decided: a verdict
+    EXPECT_FALSE(r.gave_up) << threads << " threads";       // a pair decided: a verdict
     EXPECT_FALSE(r.complete) << threads << " threads";
   }
   // Small enough to search to the end: every pair, counted completely.

@@ -34,15 +34,15 @@ bool meet(const Tri& a, const Tri& b) {
 
 TEST(TriangleContact, NoSharedVertex) {
   const Tri a{{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}}};
-  EXPECT_FALSE(meet(a, {{{0, 0, 1}, {4, 0, 1}, {0, 4, 1}}}));     // parallel planes
-  EXPECT_TRUE(meet(a, {{{1, 1, -1}, {1, 1, 1}, {2, 0, 5}}}));      // pierces the interior
-  EXPECT_FALSE(meet(a, {{{3, 3, -1}, {3, 3, 1}, {4, 4, 0}}}));     // crosses the plane outside a
-  EXPECT_TRUE(meet(a, {{{1, 1, 0}, {1, 1, 3}, {2, 2, 3}}}));       // a vertex touches a's interior
-  EXPECT_TRUE(meet(a, {{{2, 0, 0}, {2, -1, 3}, {2, 1, 3}}}));      // a vertex touches a's edge
-  EXPECT_TRUE(meet(a, {{{1, 1, 0}, {5, 1, 0}, {1, 5, 0}}}));       // coplanar overlap
-  EXPECT_FALSE(meet(a, {{{3, 3, 0}, {6, 3, 0}, {3, 6, 0}}}));      // coplanar, disjoint
-  EXPECT_TRUE(meet(a, {{{2, 2, 0}, {6, 2, 0}, {2, 6, 0}}}));       // coplanar, touching at a point
-  EXPECT_TRUE(meet(a, {{{-1, 2, -1}, {-1, 2, 1}, {3, 0, 0}}}));    // an edge of b crosses a's edge region
+  EXPECT_FALSE(meet(a, {{{0, 0, 1}, {4, 0, 1}, {0, 4, 1}}}));    // parallel planes
+  EXPECT_TRUE(meet(a, {{{1, 1, -1}, {1, 1, 1}, {2, 0, 5}}}));    // pierces the interior
+  EXPECT_FALSE(meet(a, {{{3, 3, -1}, {3, 3, 1}, {4, 4, 0}}}));   // crosses the plane outside a
+  EXPECT_TRUE(meet(a, {{{1, 1, 0}, {1, 1, 3}, {2, 2, 3}}}));     // a vertex touches a's interior
+  EXPECT_TRUE(meet(a, {{{2, 0, 0}, {2, -1, 3}, {2, 1, 3}}}));    // a vertex touches a's edge
+  EXPECT_TRUE(meet(a, {{{1, 1, 0}, {5, 1, 0}, {1, 5, 0}}}));     // coplanar overlap
+  EXPECT_FALSE(meet(a, {{{3, 3, 0}, {6, 3, 0}, {3, 6, 0}}}));    // coplanar, disjoint
+  EXPECT_TRUE(meet(a, {{{2, 2, 0}, {6, 2, 0}, {2, 6, 0}}}));     // coplanar, touching at a point
+  EXPECT_TRUE(meet(a, {{{-1, 2, -1}, {-1, 2, 1}, {3, 0, 0}}}));  // an edge of b crosses a's edge region
 }
 
 TEST(TriangleContact, SharedEdge) {
@@ -56,15 +56,15 @@ TEST(TriangleContact, SharedEdge) {
 
 TEST(TriangleContact, SharedVertex) {
   const Tri a{{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}}};
-  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {-1, -1, 2}, {-2, 1, 3}}}));  // apart, not coplanar
-  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {1, 1, 2}, {2, 1, 3}}}));     // above a, touching only at v
-  EXPECT_TRUE(meet(a, {{{0, 0, 0}, {1, 1, 2}, {2, 1, -3}}}));     // crosses a's plane inside a
-  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {-1, -1, 2}, {-1, -1, -2}}})); // crosses a's plane outside a
-  EXPECT_TRUE(meet(a, {{{0, 0, 0}, {2, 2, 0}, {1, 1, 3}}}));      // an edge of b lies in a
-  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {-3, 0, 0}, {0, -3, 0}}}));   // coplanar, opposite wedge
-  EXPECT_TRUE(meet(a, {{{0, 0, 0}, {1, 1, 0}, {-1, 3, 0}}}));     // coplanar, wedges overlap
-  EXPECT_TRUE(meet(a, {{{0, 0, 0}, {0, 2, 0}, {-3, 1, 0}}}));     // coplanar, touching along an edge ray
-  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {0, 4, 0}, {-3, 1, 0}}}));    // (shares an edge: flat, opposite sides)
+  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {-1, -1, 2}, {-2, 1, 3}}}));    // apart, not coplanar
+  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {1, 1, 2}, {2, 1, 3}}}));       // above a, touching only at v
+  EXPECT_TRUE(meet(a, {{{0, 0, 0}, {1, 1, 2}, {2, 1, -3}}}));       // crosses a's plane inside a
+  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {-1, -1, 2}, {-1, -1, -2}}}));  // crosses a's plane outside a
+  EXPECT_TRUE(meet(a, {{{0, 0, 0}, {2, 2, 0}, {1, 1, 3}}}));        // an edge of b lies in a
+  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {-3, 0, 0}, {0, -3, 0}}}));     // coplanar, opposite wedge
+  EXPECT_TRUE(meet(a, {{{0, 0, 0}, {1, 1, 0}, {-1, 3, 0}}}));       // coplanar, wedges overlap
+  EXPECT_TRUE(meet(a, {{{0, 0, 0}, {0, 2, 0}, {-3, 1, 0}}}));       // coplanar, touching along an edge ray
+  EXPECT_FALSE(meet(a, {{{0, 0, 0}, {0, 4, 0}, {-3, 1, 0}}}));      // (shares an edge: flat, opposite sides)
 }
 
 /// Independent oracle in exact rationals: computes A ∩ B as a convex set
@@ -132,8 +132,8 @@ bool oracle_meet(const Tri& a, const Tri& b, bool any = false) {
 /// frequent. meet() also checks argument and vertex symmetries. Every third
 /// pair is forced to share a vertex unless `unshared`, which instead skips
 /// pairs with a common vertex (the straddle test's territory).
-void expect_random_lattice_pairs_match_oracle(std::int64_t origin, std::int64_t step, int points = 4,
-                                              int pairs = 20000, bool unshared = false) {
+void expect_random_lattice_pairs_match_oracle(std::int64_t origin, std::int64_t step, int points = 4, int pairs = 20000,
+                                              bool unshared = false) {
   std::mt19937 rng(42);
   std::uniform_int_distribution<int> c(0, points - 1);
   const auto random_point = [&] {
@@ -256,7 +256,8 @@ TEST(TriangleContact, BesidePlaneMatchesTheGmpSides) {
     for (int n = 0; n < 30000; ++n) {
       const Tri a{{pt(), pt(), pt()}}, b{{pt(), pt(), pt()}};
       const std::array<std::int64_t, 3> na = grid_normal(a[0], a[1], a[2]);
-      if (na == std::array<std::int64_t, 3>{} || grid_normal(b[0], b[1], b[2]) == std::array<std::int64_t, 3>{}) continue;
+      if (na == std::array<std::int64_t, 3>{} || grid_normal(b[0], b[1], b[2]) == std::array<std::int64_t, 3>{})
+        continue;
       const int s0 = gmp_side(a, b[0]), s1 = gmp_side(a, b[1]), s2 = gmp_side(a, b[2]);
       const bool want = s0 != 0 && s0 == s1 && s1 == s2;
       ++tested;
@@ -442,7 +443,7 @@ TEST(NeighbourComponents, MatchTheSerialAnswerAtAnyThreadCount) {
       grid.neighbors[b][static_cast<std::size_t>(slots[b]++)] = static_cast<std::uint32_t>(a);
     };
     for (std::size_t i = 0; i + 1 < n; ++i)
-      if (rng() % 4 != 0) link(i, i + 1);  // chains
+      if (rng() % 4 != 0) link(i, i + 1);                              // chains
     for (std::size_t k = 0; k < n / 2; ++k) link(any(rng), any(rng));  // and shortcuts
     std::vector<char> keep(n);
     for (char& k : keep) k = rng() % 8 != 0;
@@ -483,7 +484,8 @@ TEST(NeighbourComponents, MatchTheSerialAnswerAtAnyThreadCount) {
       }
       ASSERT_EQ(got_range.size(), count);
       for (std::size_t i = 0; i < count; ++i)
-        ASSERT_EQ(got_range[i], expected_range[first + i]) << "n " << n << ", triangle " << first + i << ", threads " << threads;
+        ASSERT_EQ(got_range[i], expected_range[first + i])
+            << "n " << n << ", triangle " << first + i << ", threads " << threads;
     }
   }
 }

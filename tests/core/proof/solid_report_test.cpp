@@ -12,7 +12,6 @@ using Op = Operation;
 
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
-
 TEST(SolidReport, SelfIntersectingOperandIsCountedAndWarned) {
   const Mesh a = self_intersecting_pair({0, 0, 0}, {2, 2, 2}, {1, 1, 1}, {3, 3, 3});
   const BooleanResult r = boolean({a, box({5, 5, 5}, {6, 6, 6})}, Op::Union);
@@ -61,7 +60,8 @@ TEST(SolidReport, SelfIntersectionCountSaysWhenItIsALowerBound) {
   OperandReport r;
   r.solid = SolidStatus::SelfIntersecting;
   r.self_intersecting_pairs = 7;
-  EXPECT_EQ(describe_solid_check(r), "not solid: self-intersecting (7 triangle pairs meet beyond a shared vertex or edge)");
+  EXPECT_EQ(describe_solid_check(r),
+            "not solid: self-intersecting (7 triangle pairs meet beyond a shared vertex or edge)");
   r.self_intersecting_pairs_complete = false;  // the search stopped counting
   EXPECT_EQ(describe_solid_check(r),
             "not solid: self-intersecting (at least 7 triangle pairs meet beyond a shared vertex or edge)");
@@ -71,7 +71,6 @@ TEST(SolidReport, SelfIntersectionCountSaysWhenItIsALowerBound) {
                                          std::to_string(OperandReport::kMaxReportedPairs) +
                                          " triangle pairs meet beyond a shared vertex or edge)");
 }
-
 
 }  // namespace
 }  // namespace ember::test

@@ -82,7 +82,8 @@ TEST(LeafDiagonals, MasksMatchDiagonallyApartPairByPair) {
       const core::LeafDiagonals from_corners(r.tree, std::span<const std::array<IntPoint, 3>>(r.corners));
       const auto extent_of = [&](std::uint32_t i) { return core::diagonal_extent(r.corners[i]); };
       expect_masks_match(r.tree, diagonals, n, extent_of, apart, near);
-      expect_masks_match(r.tree, from_corners, n, extent_of, apart, near);  // the operand trees' (OperandTrees::diagonals)
+      expect_masks_match(r.tree, from_corners, n, extent_of, apart,
+                         near);  // the operand trees' (OperandTrees::diagonals)
     }
   }
   EXPECT_GT(apart, 10000);
@@ -115,8 +116,8 @@ TEST(LeafFrameExtents, MasksMatchExtentsApartPairByPair) {
       const RandomTriangles r(n, range, rng);
       const core::FrameAxes frame = random_frame(rng);
       const core::LeafFrameExtents leaves(r.tree, r.tris, frame);
-      expect_masks_match(r.tree, leaves, n, [&](std::uint32_t i) { return core::frame_extent(r.corners[i], frame); },
-                         apart, near);
+      expect_masks_match(
+          r.tree, leaves, n, [&](std::uint32_t i) { return core::frame_extent(r.corners[i], frame); }, apart, near);
     }
   }
   EXPECT_GT(apart, 10000);

@@ -118,7 +118,8 @@ int gmp_box_side(const Box32& box, const IntPoint& o, const std::array<std::int6
   for (int c = 0; c < 8; ++c) {
     mpz_class d = 0;
     const std::int64_t origin[3] = {o.x, o.y, o.z};
-    for (int k = 0; k < 3; ++k) d += z(n[static_cast<std::size_t>(k)]) * (z(c >> k & 1 ? box.hi[k] : box.lo[k]) - z(origin[k]));
+    for (int k = 0; k < 3; ++k)
+      d += z(n[static_cast<std::size_t>(k)]) * (z(c >> k & 1 ? box.hi[k] : box.lo[k]) - z(origin[k]));
     const int s = sgn(d);
     if (s == 0 || (side != 0 && s != side)) return 0;
     side = s;
@@ -208,8 +209,7 @@ TEST(TreeOrder, HilbertKeyStepsBetweenFaceNeighbours) {
       }
   for (std::size_t k = 1; k < along.size(); ++k) {
     int distance = 0;
-    for (int a = 0; a < 3; ++a)
-      distance += std::abs(static_cast<int>(along[k][a]) - static_cast<int>(along[k - 1][a]));
+    for (int a = 0; a < 3; ++a) distance += std::abs(static_cast<int>(along[k][a]) - static_cast<int>(along[k - 1][a]));
     EXPECT_EQ(distance, 1) << "places " << k - 1 << " and " << k;
   }
   // Across the whole grid: the curve runs from one corner cell (place 0) to

@@ -41,10 +41,12 @@ TEST(ParallelSelect, MatchesASerialFilterInOrder) {
         core::FillVector<Entry> got;
         std::atomic<bool> made_for_dropped{false};
         tbb::task_arena(threads).execute([&] {
-          got = core::parallel_select<Entry>(n, [&](std::size_t i) { return flag[i] != 0; }, [&](std::size_t i) {
-            if (!flag[i]) made_for_dropped = true;
-            return Entry{static_cast<std::uint32_t>(3 * i + 7), i % 2 == 1};
-          });
+          got = core::parallel_select<Entry>(
+              n, [&](std::size_t i) { return flag[i] != 0; },
+              [&](std::size_t i) {
+                if (!flag[i]) made_for_dropped = true;
+                return Entry{static_cast<std::uint32_t>(3 * i + 7), i % 2 == 1};
+              });
         });
         ASSERT_EQ(std::vector<Entry>(got.begin(), got.end()), expected)
             << "n " << n << ", density " << density << ", threads " << threads;

@@ -29,13 +29,14 @@ TEST(PrincipalFrame, FindsTheRodsLineAndTheFlatPilesNormal) {
   std::mt19937 rng(43);
   std::uniform_real_distribution<double> t(-1, 1);
   const double s = 1 / std::sqrt(3.0);
-  const V3 d{s, -s, s};                                    // a rod along a diagonal
-  const V3 p{1 / std::sqrt(2.0), 1 / std::sqrt(2.0), 0};   // orthogonal to d
+  const V3 d{s, -s, s};                                                     // a rod along a diagonal
+  const V3 p{1 / std::sqrt(2.0), 1 / std::sqrt(2.0), 0};                    // orthogonal to d
   const V3 q{-1 / std::sqrt(6.0), 1 / std::sqrt(6.0), 2 / std::sqrt(6.0)};  // d x p
   std::vector<V3> points;
   for (int k = 0; k < 2000; ++k) {  // long along d, wider along p than along q
     const double a = 1000 * t(rng), b = 30 * t(rng), c = 3 * t(rng);
-    points.push_back({a * d[0] + b * p[0] + c * q[0] + 5e6, a * d[1] + b * p[1] + c * q[1], a * d[2] + b * p[2] + c * q[2]});
+    points.push_back(
+        {a * d[0] + b * p[0] + c * q[0] + 5e6, a * d[1] + b * p[1] + c * q[1], a * d[2] + b * p[2] + c * q[2]});
   }
   core::FrameAxes f;
   ASSERT_TRUE(core::principal_frame(points, f));

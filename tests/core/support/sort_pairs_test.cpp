@@ -57,13 +57,19 @@ TEST(SortPairs, MatchesStdSortOn64BitKeys) {
       std::uniform_int_distribution<std::uint64_t> id(0, (1u << 17) - 1);
       std::uniform_int_distribution<std::uint64_t> few(0, 6);
       const std::vector<Pairs<std::uint64_t>> inputs = {
-          make_pairs<std::uint64_t>(n, [&] { return any(rng); }, shuffled, rng),
-          make_pairs<std::uint64_t>(n, [&] {
-            const std::uint64_t a = id(rng), b = id(rng);
-            return (std::min(a, b) << 32) | std::max(a, b);
-          }, shuffled, rng),
-          make_pairs<std::uint64_t>(n, [&] { return few(rng) * 0x0101010101ull; }, shuffled, rng),
-          make_pairs<std::uint64_t>(n, [&] { return (few(rng) & 1) << 63; }, shuffled, rng),
+          make_pairs<std::uint64_t>(
+              n, [&] { return any(rng); }, shuffled, rng),
+          make_pairs<std::uint64_t>(
+              n,
+              [&] {
+                const std::uint64_t a = id(rng), b = id(rng);
+                return (std::min(a, b) << 32) | std::max(a, b);
+              },
+              shuffled, rng),
+          make_pairs<std::uint64_t>(
+              n, [&] { return few(rng) * 0x0101010101ull; }, shuffled, rng),
+          make_pairs<std::uint64_t>(
+              n, [&] { return (few(rng) & 1) << 63; }, shuffled, rng),
       };
       for (const auto& v : inputs)
         for (const int threads : {1, 3}) expect_sorted_like_std(v, threads);
@@ -77,8 +83,12 @@ TEST(SortPairs, MatchesStdSortOn32BitKeys) {
   std::uniform_int_distribution<std::uint32_t> small(0, 999);
   for (const std::size_t n : {std::size_t{3000}, std::size_t{2 * 65536 + 5}}) {
     for (const bool shuffled : {false, true}) {
-      expect_sorted_like_std(make_pairs<std::uint32_t>(n, [&] { return any(rng); }, shuffled, rng), 2);
-      expect_sorted_like_std(make_pairs<std::uint32_t>(n, [&] { return small(rng); }, shuffled, rng), 2);
+      expect_sorted_like_std(make_pairs<std::uint32_t>(
+                                 n, [&] { return any(rng); }, shuffled, rng),
+                             2);
+      expect_sorted_like_std(make_pairs<std::uint32_t>(
+                                 n, [&] { return small(rng); }, shuffled, rng),
+                             2);
     }
   }
 }
@@ -92,7 +102,8 @@ TEST(SortPairs, FillVectorSortsLikeStdVector) {
   for (const std::size_t n : {std::size_t{100}, std::size_t{70000}, std::size_t{2 * 65536 + 9}}) {
     for (const bool one_pass : {false, true}) {
       for (const bool shuffled : {false, true}) {
-        const auto v = make_pairs<std::uint64_t>(n, [&] { return one_pass ? narrow(rng) : any(rng); }, shuffled, rng);
+        const auto v = make_pairs<std::uint64_t>(
+            n, [&] { return one_pass ? narrow(rng) : any(rng); }, shuffled, rng);
         Pairs<std::uint64_t> expected = v;
         std::sort(expected.begin(), expected.end());
         core::FillVector<std::pair<std::uint64_t, std::uint32_t>> f(n);  // unwritten until the copy
@@ -107,7 +118,8 @@ TEST(SortPairs, FillVectorSortsLikeStdVector) {
 
 TEST(SortPairs, AllKeysEqualLeavesValueOrder) {
   std::mt19937_64 rng(3);
-  const auto v = make_pairs<std::uint64_t>(70000, [] { return std::uint64_t{42}; }, false, rng);
+  const auto v = make_pairs<std::uint64_t>(
+      70000, [] { return std::uint64_t{42}; }, false, rng);
   auto sorted = v;
   core::sort_pairs(sorted);
   EXPECT_TRUE(sorted == v);
@@ -131,7 +143,8 @@ TEST(SortEqualKeyRuns, CompletesTheKeyOrderLikeOneFullSort) {
       }
     }
   core::sort_pairs(v);
-  const auto full = [&](const std::pair<std::uint64_t, std::uint32_t>& a, const std::pair<std::uint64_t, std::uint32_t>& b) {
+  const auto full = [&](const std::pair<std::uint64_t, std::uint32_t>& a,
+                        const std::pair<std::uint64_t, std::uint32_t>& b) {
     if (a.first != b.first) return a.first < b.first;
     const std::uint32_t sa = secondary[a.second], sb = secondary[b.second];
     return sa != sb ? sa < sb : a.second < b.second;

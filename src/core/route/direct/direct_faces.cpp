@@ -182,9 +182,8 @@ bool TriangleCutter::walk_faces(std::uint32_t id, const std::array<IntPoint, 3>&
     const std::size_t first = ring_.size();
     for (std::size_t i = 0; i < m; ++i)
       if (cross_[i].edge == k) ring_.push_back(kCorners + static_cast<std::uint32_t>(i));
-    std::sort(ring_.begin() + static_cast<std::ptrdiff_t>(first), ring_.end(), [&](std::uint32_t x, std::uint32_t y) {
-      return before(cross_[x - kCorners], cross_[y - kCorners]);
-    });
+    std::sort(ring_.begin() + static_cast<std::ptrdiff_t>(first), ring_.end(),
+              [&](std::uint32_t x, std::uint32_t y) { return before(cross_[x - kCorners], cross_[y - kCorners]); });
     for (std::size_t s = first + 1; s < ring_.size(); ++s)  // two planes through one point of the edge
       if (!before(cross_[ring_[s - 1] - kCorners], cross_[ring_[s] - kCorners])) return false;
   }

@@ -130,11 +130,11 @@ class TriangleCutter {
   /// A crossing point of one touched triangle, local to it.
   struct Crossing {
     CrossingName name;
-    int edge = -1;     ///< the triangle's own edge it lies on, or -1 inside the triangle
-    std::uint32_t tri = 0;     ///< the triangle whose edge it lies on (this one or the partner)
+    int edge = -1;              ///< the triangle's own edge it lies on, or -1 inside the triangle
+    std::uint32_t tri = 0;      ///< the triangle whose edge it lies on (this one or the partner)
     std::uint8_t tri_edge = 0;  ///< that edge
-    __int128 sa = 0, sb = 0;  ///< the sides of that edge's end points against the crossed plane
-    int next = -1, prev = -1;  ///< chords: the crossing the curve runs on to / came from (local index)
+    __int128 sa = 0, sb = 0;    ///< the sides of that edge's end points against the crossed plane
+    int next = -1, prev = -1;   ///< chords: the crossing the curve runs on to / came from (local index)
   };
 
   /// Merges the chords' end points that have the same name (a crossing

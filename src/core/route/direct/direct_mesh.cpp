@@ -17,9 +17,8 @@
 
 namespace ember::core {
 
-std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box& box,
-                                            const SolveContext& ctx, const OperandTrees& trees,
-                                            const Partners& partners, const Quantizer& q,
+std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box& box, const SolveContext& ctx,
+                                            const OperandTrees& trees, const Partners& partners, const Quantizer& q,
                                             std::span<const Provenance> sources, const InputTopology& topology,
                                             const std::atomic<bool>& stop) {
   if (ctx.operands != 2 || topology.operand_base.size() != 3) return std::nullopt;
@@ -78,7 +77,8 @@ std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box
       const auto j = std::lower_bound(touched.begin(), touched.end(), f);
       const std::span<const std::uint32_t> lf = partners.of(f);
       const auto at = std::lower_bound(lf.begin(), lf.end(), t);
-      if (j == touched.end() || *j != f || at == lf.end() || *at != t) return false;  // partners are mutual: not reached
+      if (j == touched.end() || *j != f || at == lf.end() || *at != t)
+        return false;  // partners are mutual: not reached
       const std::size_t jf = static_cast<std::size_t>(j - touched.begin());
       refs.push_back({&chords[chord_at[jf] + static_cast<std::size_t>(at - lf.begin()) - above[jf]], f, t, true});
     }
@@ -119,11 +119,11 @@ std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box
     }
   });
   sort_pairs(named);
-  sort_equal_key_runs(named, [&](const std::pair<std::uint64_t, std::uint32_t>& a,
-                                 const std::pair<std::uint64_t, std::uint32_t>& b) {
-    const std::uint32_t fa = name_of[a.second].face, fb = name_of[b.second].face;
-    return fa != fb ? fa < fb : a.second < b.second;
-  });
+  sort_equal_key_runs(
+      named, [&](const std::pair<std::uint64_t, std::uint32_t>& a, const std::pair<std::uint64_t, std::uint32_t>& b) {
+        const std::uint32_t fa = name_of[a.second].face, fb = name_of[b.second].face;
+        return fa != fb ? fa < fb : a.second < b.second;
+      });
   std::vector<std::uint32_t> id_of(named.size());
   std::vector<std::uint32_t> first_of;  // per crossing vertex: its first occurrence
   for (std::size_t i = 0; i < named.size(); ++i) {
@@ -181,10 +181,11 @@ std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box
     if (v >= inputs) return crossing_rounded[v - inputs];
     return q.dequantize(grid.corners[corner_of[v] / 3][corner_of[v] % 3]);
   };
-  write_indexed_mesh(tris, inputs + first_of.size(), position, q.grid_points_exact() ? untouched->size() : 0,
-                     out.mesh, out.stats.rounded_degenerate);
+  write_indexed_mesh(tris, inputs + first_of.size(), position, q.grid_points_exact() ? untouched->size() : 0, out.mesh,
+                     out.stats.rounded_degenerate);
   for (const CutFaces& block : blocks) out.stats.regions += block.faces;
-  out.stats.triangulate_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - clock).count();
+  out.stats.triangulate_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - clock).count();
   return out;
 }
 

@@ -58,9 +58,8 @@ namespace ember::core {
 /// cannot take, a failed trace, or `stop` set. The caller then takes the solid
 /// path's pieces and the mesh stage, which handle all of these.
 /// Deterministic: the output does not depend on the schedule.
-std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box& box,
-                                            const SolveContext& ctx, const OperandTrees& trees,
-                                            const Partners& partners, const Quantizer& q,
+std::optional<MeshOutput> direct_solid_mesh(const GridTriangles& grid, const Box& box, const SolveContext& ctx,
+                                            const OperandTrees& trees, const Partners& partners, const Quantizer& q,
                                             std::span<const Provenance> sources, const InputTopology& topology,
                                             const std::atomic<bool>& stop);
 

@@ -112,7 +112,7 @@ FrameBoxes::FrameBoxes(const SoupApprox& a, std::span<const std::uint32_t> opera
 namespace {
 constexpr int kMaxCells = 32;  // per axis: a pile of ~5,000 thin polygons gets ~5 per cell
 constexpr int kMinCells = 4;
-constexpr int kMaxSpan = 64;   // cells a polygon may cover before it counts as wide
+constexpr int kMaxSpan = 64;  // cells a polygon may cover before it counts as wide
 /// The grid is coarsened until polygons cover at most this many cells on
 /// average (wide ones counted as kMaxSpan + 1); 2, 4 and 8 measured alike on
 /// the sliver pile, 16 6% slower, no coarsening 15-20% slower.
@@ -219,7 +219,8 @@ bool FrameBoxes::overlapping(std::size_t i, Query& query, Candidates& out) const
   // (in the sliver pile they were a third of the leaf), marks those that
   // meet i's.
   out.clear();
-  append_meeting(wide_lo_, wide_hi_, i, wide_.size(), [&](std::size_t k) { return wide_[k]; }, out);
+  append_meeting(
+      wide_lo_, wide_hi_, i, wide_.size(), [&](std::size_t k) { return wide_[k]; }, out);
   for (const std::uint32_t j : out) mark(j, 1);
   // Read back in ascending order (the order a full scan finds them in),
   // clearing every word; the wide ones that meet are tested again (few).
@@ -243,7 +244,8 @@ void FrameBoxes::scan(std::size_t i, Candidates& out) const {
 
 void FrameBoxes::scan_portable(std::size_t i, Candidates& out) const {
   out.clear();
-  append_meeting(lo_, hi_, i, i, [](std::size_t j) { return static_cast<std::uint32_t>(j); }, out);
+  append_meeting(
+      lo_, hi_, i, i, [](std::size_t j) { return static_cast<std::uint32_t>(j); }, out);
   if (!operand_boxes_.empty()) std::erase_if(out, [&](std::uint32_t j) { return apart_across(i, j); });
 }
 

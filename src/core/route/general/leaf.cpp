@@ -35,9 +35,9 @@ struct LeafScratch {
   std::vector<std::int8_t> t_signs;  ///< gather, pile leaves: t's vertices against a candidate's plane
   std::vector<Plane> cons;
   Wnv w, delta;
-  std::vector<std::uint32_t> related;  ///< soup indices of the polygons that touch t's plane near t
-  std::vector<std::uint32_t> related_at;       ///< per related polygon: its signs in related_signs (coplanar: none)
-  std::vector<std::int8_t> related_signs;      ///< vertex signs against t's plane, concatenated
+  std::vector<std::uint32_t> related;      ///< soup indices of the polygons that touch t's plane near t
+  std::vector<std::uint32_t> related_at;   ///< per related polygon: its signs in related_signs (coplanar: none)
+  std::vector<std::int8_t> related_signs;  ///< vertex signs against t's plane, concatenated
   std::vector<std::uint32_t> free_front, free_back;  ///< per operand: == stamp if free on that side of t
   std::uint32_t stamp = 0;
   std::size_t n_front = 0, n_back = 0;  ///< free operands per side
@@ -141,8 +141,8 @@ bool on_box_face(const SoupPolygon& t, const Box& box) {
 /// itself (its edges continue into polygons that leave the plane, which are
 /// counted). Coplanar polygons of open operands count on both sides.
 /// `direction[i]` names polygon i's class of parallel planes.
-void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, const std::vector<std::uint32_t>& direction,
-            LeafScratch& sc) {
+void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx,
+            const std::vector<std::uint32_t>& direction, LeafScratch& sc) {
   const auto t_index = static_cast<std::size_t>(&t - soup.data());
   const std::uint32_t t_direction = direction[t_index];
   const bool t_solid = ctx.solid[t.operand] != 0;
@@ -173,8 +173,8 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, con
     // offers, 63% in the sliver pile, stop here).
     const bool parallel = direction[i] == t_direction;
     const bool plane_first = sc.approx && !parallel;
-    if (plane_first && !touches_plane_filtered(sc.approx->of(i), sc.approx->grid_of(i), o, t.poly->support, t_filter,
-                                               sc.other_signs))
+    if (plane_first &&
+        !touches_plane_filtered(sc.approx->of(i), sc.approx->grid_of(i), o, t.poly->support, t_filter, sc.other_signs))
       return;
     // Two polygons of one solid operand never cross or overlap (NSI), and the
     // solid operand's own winding numbers at t are known (0 / 1). (Checked
@@ -310,8 +310,8 @@ void refine(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx, boo
 /// (t and coplanar overlapping polygons), signed relative to t's orientation.
 /// `side` is the side of t's plane S the path arrives from. (t may be unbuilt:
 /// the proof classifies in the root soup.)
-bool trace_onto(const Soup& soup, const SoupPolygon& t, const Plane& S, const Dyadic& start, int k,
-                const AxisPoint& x, Wnv& w, Wnv& delta, int& side, std::uint32_t skip, const SoupApprox* flat) {
+bool trace_onto(const Soup& soup, const SoupPolygon& t, const Plane& S, const Dyadic& start, int k, const AxisPoint& x,
+                Wnv& w, Wnv& delta, int& side, std::uint32_t skip, const SoupApprox* flat) {
   AxisSegment seg;
   if (!onto_segment(S, start, k, x, seg, side)) return false;
   delta.assign(w.size(), 0);
@@ -329,7 +329,8 @@ bool trace_onto(const Soup& soup, const SoupPolygon& t, const Plane& S, const Dy
       return meet_onto(seg, built_polygon(p, built), p.operand, S, x, sum, sum_delta);
     });
   };
-  if (flat) return run([&](std::size_t i, const SoupPolygon&) { return line_clearly_misses(seg.line, seg.uv, *flat, i); });
+  if (flat)
+    return run([&](std::size_t i, const SoupPolygon&) { return line_clearly_misses(seg.line, seg.uv, *flat, i); });
   return run([&](std::size_t, const SoupPolygon& p) { return line_clearly_misses(seg.line, seg.uv, p); });
 }
 
@@ -426,7 +427,7 @@ namespace {
 /// axis. Parallel planes (either orientation), and only they, share it.
 std::array<std::int64_t, 3> direction_key(const Plane& p) {
   std::array<std::int64_t, 3> n{static_cast<std::int64_t>(p.a.raw()), static_cast<std::int64_t>(p.b.raw()),
-                                 static_cast<std::int64_t>(p.c.raw())};
+                                static_cast<std::int64_t>(p.c.raw())};
   std::int64_t g = 0;
   for (const std::int64_t v : n) g = std::gcd(g, v < 0 ? -v : v);
   if (g == 0) return n;
@@ -441,7 +442,7 @@ std::array<std::int64_t, 3> direction_key(const Plane& p) {
 /// among its parallel polygons, not the whole leaf) and, in pile leaves, the
 /// filters' approximations and frame boxes.
 struct LeafIndex {
-  std::vector<std::uint32_t> order;  ///< soup indices grouped by direction class
+  std::vector<std::uint32_t> order;                             ///< soup indices grouped by direction class
   std::vector<std::uint32_t> class_begin, class_end, position;  ///< per polygon: its class in `order`, its place there
   SoupApprox approx;
   FrameBoxes frame;
@@ -497,8 +498,8 @@ LeafIndex index_leaf(const Soup& soup) {
 /// enabled pieces in soup order.
 void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafIndex& index, std::size_t begin,
                     std::size_t end, std::vector<OutputPolygon>& out) {
-  const std::vector<std::uint32_t>&order = index.order, &class_begin = index.class_begin,
-        &class_end = index.class_end, &position = index.position;
+  const std::vector<std::uint32_t>&order = index.order, &class_begin = index.class_begin, &class_end = index.class_end,
+        &position = index.position;
   Wnv w_front, w_back;
   LeafScratch scratch;
   if (index.pile) {
@@ -508,8 +509,9 @@ void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafInd
   std::vector<Piece> pieces;
   const auto classify_or_throw = [&](const SoupPolygon& t, const Polygon& f, std::uint64_t seed) {
     if (!classify_piece(pb, t, f, ctx.solid[t.operand] != 0, seed, w_front, w_back, scratch))
-      throw Error("ember: could not classify a polygon piece (no non-degenerate trace path found); "
-                  "this input is too degenerate for the current implementation");
+      throw Error(
+          "ember: could not classify a polygon piece (no non-degenerate trace path found); "
+          "this input is too degenerate for the current implementation");
   };
   // Polygons are solved in edge_neighbour_order, so that more of them take
   // their winding numbers across input edges (the sliver pile: 111,284 traces
@@ -546,9 +548,10 @@ void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafInd
   for (const std::uint32_t ti : visit) {
     produced_from[ti - begin] = produced.size();
     const SoupPolygon& t = pb.soup[ti];
-    const bool uncovered = disable_covered(
-        pb.soup, t, ctx, std::span<const std::uint32_t>(order.data() + class_begin[ti], class_end[ti] - class_begin[ti]),
-        position[ti], scratch, pieces);
+    const bool uncovered =
+        disable_covered(pb.soup, t, ctx,
+                        std::span<const std::uint32_t>(order.data() + class_begin[ti], class_end[ti] - class_begin[ti]),
+                        position[ti], scratch, pieces);
     if (pieces.empty()) continue;
     gather(pb.soup, t, ctx, class_begin, scratch);
     const bool face = on_box_face(t, pb.box);
@@ -568,11 +571,11 @@ void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafInd
     // cannot change the result there, one trace classifies the whole piece and
     // no further cut is needed. Only when t has a known side (inside the box).
     const bool solid = ctx.solid[t.operand] != 0;
-    const bool maybe_constant =
-        !face && could_be_constant(ctx, scratch.n_front, scratch.free_front[0] == scratch.stamp, solid ? 1 : 0, 0,
-                                   solid && t.operand == 0 ? 0 : -2) &&
-        could_be_constant(ctx, scratch.n_back, scratch.free_back[0] == scratch.stamp, solid ? 1 : 0, solid ? 1 : 0,
-                          solid && t.operand == 0 ? 1 : -2);
+    const bool maybe_constant = !face &&
+                                could_be_constant(ctx, scratch.n_front, scratch.free_front[0] == scratch.stamp,
+                                                  solid ? 1 : 0, 0, solid && t.operand == 0 ? 0 : -2) &&
+                                could_be_constant(ctx, scratch.n_back, scratch.free_back[0] == scratch.stamp,
+                                                  solid ? 1 : 0, solid ? 1 : 0, solid && t.operand == 0 ? 1 : -2);
     const std::size_t n_pieces = pieces.size();
     for (std::size_t n = 0; n < n_pieces; ++n) {
       const std::uint64_t seed = (static_cast<std::uint64_t>(t.id) << 20) ^ (n << 10);

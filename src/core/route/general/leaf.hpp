@@ -15,7 +15,6 @@ namespace ember::core {
 /// path was found.
 bool classify_polygon(const Subproblem& problem, const SoupPolygon& t, Wnv& w_front, Wnv& w_back);
 
-
 /// Leaf computation (exposed for tests). Path pieces carry path 0.
 void solve_leaf(const Subproblem& problem, const SolveContext& ctx, std::vector<OutputPolygon>& out);
 

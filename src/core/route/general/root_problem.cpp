@@ -31,9 +31,8 @@ const Subproblem& RootProblem::with_soup() {
   // Isolated: while the parallel build waits, this thread runs only its
   // own tasks. Otherwise it could pick up another task that asks for the
   // soup (two operands' proofs run side by side) and wait on itself.
-  std::call_once(built_, [&] {
-    tbb::this_task_arena::isolate([&] { root_.soup = root_soup(*grid_, operand_begin_); });
-  });
+  std::call_once(built_,
+                 [&] { tbb::this_task_arena::isolate([&] { root_.soup = root_soup(*grid_, operand_begin_); }); });
   return root_;
 }
 

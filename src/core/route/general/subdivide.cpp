@@ -117,8 +117,7 @@ int choose_split(const Subproblem& pb, SoupSummary& summary, std::int64_t& posit
 /// dyadic fraction (one axis-parallel segment); then paths that also move the
 /// other coordinates. Each candidate is validated by an exact trace in the
 /// parent, whose soup contains every polygon the path can meet.
-bool move_reference(const Subproblem& parent, const Box& child, int axis, std::int64_t split, Dyadic& ref,
-                    Wnv& w) {
+bool move_reference(const Subproblem& parent, const Box& child, int axis, std::int64_t split, Dyadic& ref, Wnv& w) {
   const bool upper = child.lo[axis] == split;  // child lies above the split plane
   // Offsets of odd/128 grid units: "generic" positions. Half-integers would be
   // a poor choice: edges between grid points pass through them.
@@ -151,8 +150,7 @@ bool move_reference(const Subproblem& parent, const Box& child, int axis, std::i
       cand.num[b] += ((variant & 1) ? unit : -unit) * (1 + variant / 2);
       cand.num[c] += ((variant & 2) ? unit : -unit) * (1 + variant / 4);
       bool inside = true;
-      for (const int a : {b, c})
-        inside &= compare(cand, a, child.lo[a]) > 0 && compare(cand, a, child.hi[a]) < 0;
+      for (const int a : {b, c}) inside &= compare(cand, a, child.lo[a]) > 0 && compare(cand, a, child.hi[a]) < 0;
       if (!inside) continue;
       Wnv trial = parent.ref_w;
       if (trace_path(parent.soup, parent.ref, cand, {b, c, axis}, trial)) {
@@ -207,9 +205,7 @@ void split_range(Soup& soup, std::size_t begin, std::size_t end, int axis, std::
       case ClipSide::On:  // polygons in the plane go to the lower child only
         left.push_back(std::move(p));
         break;
-      case ClipSide::Positive:
-        right.push_back(std::move(p));
-        break;
+      case ClipSide::Positive: right.push_back(std::move(p)); break;
       case ClipSide::Both: {
         // The parts take over the clip buffers; the old polygon's buffers
         // become the next clip's, so a split costs one allocation, not four.

@@ -18,7 +18,6 @@ struct SplitStep {
 };
 using SplitPath = std::shared_ptr<const SplitStep>;
 
-
 /// A self-contained subproblem: polygons clipped to a closed integer box and a
 /// reference point strictly inside the box with its winding-number vector.
 struct Subproblem {

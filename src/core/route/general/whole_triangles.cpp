@@ -131,7 +131,8 @@ void expand_path_pieces(std::vector<OutputPolygon>& polys, std::span<const Split
           if (clip(*piece.poly, axis_plane(step.axis, step.position), neg, pos) != ClipSide::Both) continue;
           std::swap(*piece.poly, step.upper ? pos : neg);
           update_bounds(piece);
-          cuts.push_back({&step, SoupPolygon{std::make_unique<Polygon>(*piece.poly), 0, 0, piece.lo, piece.hi, 0, nullptr}});
+          cuts.push_back(
+              {&step, SoupPolygon{std::make_unique<Polygon>(*piece.poly), 0, 0, piece.lo, piece.hi, 0, nullptr}});
         }
         p.vertices.assign(piece.poly->vertices.begin(), piece.poly->vertices.end());
         p.path = OutputPolygon::kNoPath;

@@ -37,7 +37,9 @@ constexpr double kMargin = 0x1p-12;
 struct PlaneDoubles {
   double a, b, c, d;
   explicit PlaneDoubles(const Plane& p)
-      : a(static_cast<double>(p.a.raw())), b(static_cast<double>(p.b.raw())), c(static_cast<double>(p.c.raw())),
+      : a(static_cast<double>(p.a.raw())),
+        b(static_cast<double>(p.b.raw())),
+        c(static_cast<double>(p.c.raw())),
         d(p.d.to_double()) {}
   double value(const std::array<double, 3>& f) const { return a * f[0] + b * f[1] + c * f[2] + d; }
   double slack(const std::array<double, 3>& f) const {
@@ -59,8 +61,8 @@ bool common_direction(const PlaneDoubles& pa, const PlaneDoubles& pb, std::array
 /// Double estimate of the interval that a convex polygon's chord along
 /// `plane` covers on the direction `d`, from the cached vertex
 /// approximations and the vertices' exact signs against the plane.
-std::array<double, 2> approx_chord(const Polygon& poly, const std::vector<std::int8_t>& signs, const PlaneDoubles& plane,
-                                   const std::array<double, 3>& d) {
+std::array<double, 2> approx_chord(const Polygon& poly, const std::vector<std::int8_t>& signs,
+                                   const PlaneDoubles& plane, const std::array<double, 3>& d) {
   std::array<double, 2> range{HUGE_VAL, -HUGE_VAL};
   const auto add = [&](const std::array<double, 3>& x) {
     const double t = d[0] * x[0] + d[1] * x[1] + d[2] * x[2];
@@ -143,8 +145,8 @@ bool chords_surely_disjoint(const Polygon& a, const Plane& sa, const std::vector
   return common_direction(pa, pb, d) && surely_disjoint_along(a, pa, signs_a, b, pb, signs_b, d);
 }
 
-ChordOverlap filter_chords(const Polygon& a, const Plane& sa, const std::vector<std::int8_t>& signs_a,
-                           const Polygon& b, const Plane& sb, const std::vector<std::int8_t>& signs_b) {
+ChordOverlap filter_chords(const Polygon& a, const Plane& sa, const std::vector<std::int8_t>& signs_a, const Polygon& b,
+                           const Plane& sb, const std::vector<std::int8_t>& signs_b) {
   const PlaneDoubles pa(sa), pb(sb);
   std::array<double, 3> d;
   if (!common_direction(pa, pb, d)) return ChordOverlap::kUnsure;

@@ -27,8 +27,8 @@ enum class ChordOverlap { kYes, kNo, kUnsure };
 ///    partition without changing any classification;
 ///  * kNo when chords_surely_disjoint says so (never wrong);
 ///  * kUnsure otherwise: the caller decides exactly.
-ChordOverlap filter_chords(const Polygon& a, const Plane& sa, const std::vector<std::int8_t>& signs_a,
-                           const Polygon& b, const Plane& sb, const std::vector<std::int8_t>& signs_b);
+ChordOverlap filter_chords(const Polygon& a, const Plane& sa, const std::vector<std::int8_t>& signs_a, const Polygon& b,
+                           const Plane& sb, const std::vector<std::int8_t>& signs_b);
 
 /// True only if the chord of polygon `a` (on plane `sa`) along plane `sb` and
 /// the chord of polygon `b` (on `sb`) along `sa` are certainly disjoint: then

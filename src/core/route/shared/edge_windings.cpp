@@ -28,7 +28,8 @@ std::vector<std::uint32_t> edge_neighbour_order(const Soup& soup, std::size_t be
       uses[3 * i + k] = {{a[0], a[1], a[2], b[0], b[1], b[2]}, static_cast<std::uint32_t>(i)};
     }
   }
-  std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) { return x.edge != y.edge ? x.edge < y.edge : x.poly < y.poly; });
+  std::sort(uses.begin(), uses.end(),
+            [](const Use& x, const Use& y) { return x.edge != y.edge ? x.edge < y.edge : x.poly < y.poly; });
   std::vector<std::uint32_t> run_begin, runs_of(3 * n);  // per polygon, its edges' runs
   std::vector<std::uint8_t> filled(n, 0);
   for (std::size_t u = 0; u < uses.size(); ++u) {
@@ -203,8 +204,8 @@ bool share_a_stretch(const IntPoint& a, const IntPoint& b, const Point& from, co
   return before(n_to, to) && before(from, n_from);
 }
 
-bool EdgeWindings::find(const Polygon& f, std::span<const char> need_front, std::span<const char> need_back,
-                        Wnv& front, Wnv& back, bool& full) {
+bool EdgeWindings::find(const Polygon& f, std::span<const char> need_front, std::span<const char> need_back, Wnv& front,
+                        Wnv& back, bool& full) {
   const std::array<IntPoint, 3>& c = *t_->corners;
   const std::size_t n = f.vertices.size();
   for (std::size_t i = 0; i < n; ++i) {

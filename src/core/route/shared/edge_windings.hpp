@@ -71,8 +71,8 @@ class EdgeWindings {
   /// polygon, from a recorded neighbour across one of f's input edges, if
   /// one is known for every operand o with need_front[o] (need_back[o]).
   /// `full` tells whether the values hold for all operands on both sides.
-  bool find(const Polygon& f, std::span<const char> need_front, std::span<const char> need_back, Wnv& front,
-            Wnv& back, bool& full);
+  bool find(const Polygon& f, std::span<const char> need_front, std::span<const char> need_back, Wnv& front, Wnv& back,
+            bool& full);
 
   /// Records piece f of the current polygon as classified: front / back hold
   /// for every operand o with valid_front[o] (valid_back[o]).
@@ -93,15 +93,15 @@ class EdgeWindings {
   std::uint32_t& first_entry_slot(const EdgeKey& k);
   /// One edge of a recorded piece on an input edge of its polygon.
   struct Entry {
-    Point from, to;              ///< the piece's edge, in its own direction
-    std::uint32_t source = 0;    ///< soup index of the piece's polygon
-    std::uint32_t winding = 0;   ///< index into windings_ / valid_
+    Point from, to;                   ///< the piece's edge, in its own direction
+    std::uint32_t source = 0;         ///< soup index of the piece's polygon
+    std::uint32_t winding = 0;        ///< index into windings_ / valid_
     std::uint32_t next = UINT32_MAX;  ///< next entry under the same key
   };
   /// Per input edge k of the current polygon.
   enum : std::uint8_t { kUnknown, kOpen, kBlocked };
   struct InputEdge {
-    Plane plane;                 ///< the triangle's edge plane (clip keeps it)
+    Plane plane;  ///< the triangle's edge plane (clip keeps it)
     std::uint8_t state = kUnknown;
     /// With kOpen: the related polygons containing a stretch of the line,
     /// except those lying on t's side in t's plane.

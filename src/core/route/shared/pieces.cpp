@@ -117,13 +117,14 @@ bool signs_touch(const Points& points, Side&& side, std::vector<std::int8_t>& si
 }  // namespace
 
 bool touches_plane(const Polygon& o, const Plane& plane, const PlaneApprox& approx, std::vector<std::int8_t>& signs) {
-  return signs_touch(o.vertices, [&](const Point& x) { return classify(x, plane, approx); }, signs);
+  return signs_touch(
+      o.vertices, [&](const Point& x) { return classify(x, plane, approx); }, signs);
 }
 
 bool touches_plane(const std::array<IntPoint, 3>& corners, const Plane& plane, std::vector<std::int8_t>& signs) {
-  return signs_touch(corners, [&](const IntPoint& x) { return classify(x, plane); }, signs);
+  return signs_touch(
+      corners, [&](const IntPoint& x) { return classify(x, plane); }, signs);
 }
-
 
 bool meet_onto(const AxisSegment& seg, const Polygon& p, std::uint32_t operand, const Plane& S, const AxisPoint& x,
                Wnv& w, Wnv& delta) {
@@ -145,8 +146,9 @@ bool onto_segment(const Plane& S, const Dyadic& start, int k, const AxisPoint& x
   if (dir == 0) return false;
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   const AxisLine line = axis_line(start, k);
-  seg = AxisSegment{line, dyadic_axis_plane(start, i), dyadic_axis_plane(start, j), dir > 0 ? -pa : pa,
-                    side > 0 ? -S : S, dir, {}, {}, line_point_approx(line)};
+  seg = AxisSegment{
+      line, dyadic_axis_plane(start, i), dyadic_axis_plane(start, j), dir > 0 ? -pa : pa, side > 0 ? -S : S, dir, {},
+      {},   line_point_approx(line)};
   const auto xa = approx(x);
   for (int a = 0; a < 3; ++a) {
     seg.lo[a] = std::min(approx_coord(start, a), xa[a]) - 1e-6;

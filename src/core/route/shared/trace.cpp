@@ -52,8 +52,9 @@ bool make_axis_segment(const Dyadic& a, const Dyadic& b, int axis, AxisSegment& 
   const AxisLine line = axis_line(a, axis);
   // Segment = points of the line with r0 <= 0 and r1 <= 0.
   const Plane pa = dyadic_axis_plane(a, axis), pb = dyadic_axis_plane(b, axis);
-  seg = AxisSegment{line, dyadic_axis_plane(a, u), dyadic_axis_plane(a, v), dir > 0 ? -pa : pa, dir > 0 ? pb : -pb,
-                    dir, {}, {}, line_point_approx(line)};
+  seg = AxisSegment{
+      line, dyadic_axis_plane(a, u), dyadic_axis_plane(a, v), dir > 0 ? -pa : pa, dir > 0 ? pb : -pb, dir, {},
+      {},   line_point_approx(line)};
   for (int i = 0; i < 3; ++i) {
     seg.lo[i] = std::min(approx_coord(a, i), approx_coord(b, i));
     seg.hi[i] = std::max(approx_coord(a, i), approx_coord(b, i));
@@ -77,7 +78,8 @@ bool trace_axis_segment(const Soup& soup, const Dyadic& a, const Dyadic& b, int 
       return add_crossing(seg, built_polygon(p, built), p.operand, sum);
     });
   };
-  if (flat) return run([&](std::size_t i, const SoupPolygon&) { return line_clearly_misses(seg.line, seg.uv, *flat, i); });
+  if (flat)
+    return run([&](std::size_t i, const SoupPolygon&) { return line_clearly_misses(seg.line, seg.uv, *flat, i); });
   return run([&](std::size_t, const SoupPolygon& p) { return line_clearly_misses(seg.line, seg.uv, p); });
 }
 
@@ -89,10 +91,8 @@ bool add_crossing(const AxisSegment& s, const SoupPolygon& p, Wnv& w) {
 bool add_crossing(const AxisSegment& s, const Polygon& poly, std::uint32_t operand, Wnv& w) {
   const SegmentHit h = intersect_segment(s.line, s.r0, s.r1, poly);
   switch (h.kind) {
-    case LineHit::Miss:
-      return true;
-    case LineHit::Boundary:
-      return false;
+    case LineHit::Miss: return true;
+    case LineHit::Boundary: return false;
     case LineHit::Interior:
       if (h.at_endpoint) return false;
       // Crossing along +axis through a polygon whose normal points along

@@ -11,7 +11,8 @@ namespace ember::core {
 
 std::size_t SolidHandover::hash(const IntPoint& a, const IntPoint& b) {
   std::uint64_t h = 0;
-  for (const std::int64_t v : {a.x, a.y, a.z, b.x, b.y, b.z}) h = (h ^ static_cast<std::uint64_t>(v)) * 0x9e3779b97f4a7c15ULL;
+  for (const std::int64_t v : {a.x, a.y, a.z, b.x, b.y, b.z})
+    h = (h ^ static_cast<std::uint64_t>(v)) * 0x9e3779b97f4a7c15ULL;
   return static_cast<std::size_t>(h ^ (h >> 29));
 }
 
@@ -132,21 +133,20 @@ void CutHandover::begin_triangle(const Polygon& t, std::span<const Polygon* cons
   lines_.clear();
   for (std::size_t i = 0; i < partner.size(); ++i)
     lines_.push_back({key_of(partner[i]->support), partner[i]->support, i, -1});
-  std::sort(lines_.begin(), lines_.end(), [](const Line& a, const Line& b) {
-    return a.key != b.key ? a.key < b.key : a.partner < b.partner;
-  });
+  std::sort(lines_.begin(), lines_.end(),
+            [](const Line& a, const Line& b) { return a.key != b.key ? a.key < b.key : a.partner < b.partner; });
   // Two partners on one plane both hold its lines: blocked.
   for (std::size_t i = 0; i < lines_.size(); ++i) {
     for (std::size_t j = i + 1; j < lines_.size() && lines_[j].key == lines_[i].key; ++j)
-      if (lines_[j].plane == lines_[i].plane || lines_[j].plane == -lines_[i].plane) lines_[i].state = lines_[j].state = 1;
+      if (lines_[j].plane == lines_[i].plane || lines_[j].plane == -lines_[i].plane)
+        lines_[i].state = lines_[j].state = 1;
   }
 }
 
 int CutHandover::line_of(const Plane& e) const {
   const std::array<std::int64_t, 3> k = key_of(e);
-  auto it = std::lower_bound(lines_.begin(), lines_.end(), k, [](const Line& l, const std::array<std::int64_t, 3>& key) {
-    return l.key < key;
-  });
+  auto it = std::lower_bound(lines_.begin(), lines_.end(), k,
+                             [](const Line& l, const std::array<std::int64_t, 3>& key) { return l.key < key; });
   for (; it != lines_.end() && it->key == k; ++it)
     if (it->plane == e || it->plane == -e) return static_cast<int>(it - lines_.begin());
   return -1;
@@ -228,13 +228,13 @@ bool CutHandover::spread(std::span<const Piece> pieces, PieceWindings& pw,
     const Polygon& f = pieces[m].poly;
     for (std::size_t i = 0; i < f.edges.size(); ++i)
       if (const int line = line_of(f.edges[i]); line >= 0)
-        piece_edges_.push_back({static_cast<std::uint32_t>(line), static_cast<std::uint32_t>(m), static_cast<std::uint32_t>(i)});
+        piece_edges_.push_back(
+            {static_cast<std::uint32_t>(line), static_cast<std::uint32_t>(m), static_cast<std::uint32_t>(i)});
   }
   piece_begin_[n] = static_cast<std::uint32_t>(piece_edges_.size());
   line_edges_ = piece_edges_;
-  std::sort(line_edges_.begin(), line_edges_.end(), [](const CutEdge& a, const CutEdge& b) {
-    return a.line != b.line ? a.line < b.line : a.piece < b.piece;
-  });
+  std::sort(line_edges_.begin(), line_edges_.end(),
+            [](const CutEdge& a, const CutEdge& b) { return a.line != b.line ? a.line < b.line : a.piece < b.piece; });
   Wnv front, back;
   std::size_t head = 0, first_unknown = 0;
   while (!pw.complete()) {

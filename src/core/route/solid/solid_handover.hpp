@@ -47,10 +47,10 @@ class SolidHandover {
 
  private:
   struct Entry {
-    Point from, to;             ///< the piece's edge on the input edge, in its own direction
-    IntPoint a, b;              ///< the input edge, in the piece's direction
-    std::uint32_t tri = 0;      ///< the piece's triangle
-    std::uint32_t winding = 0;  ///< front at 2 * operands * winding in windings_, then back
+    Point from, to;                   ///< the piece's edge on the input edge, in its own direction
+    IntPoint a, b;                    ///< the input edge, in the piece's direction
+    std::uint32_t tri = 0;            ///< the piece's triangle
+    std::uint32_t winding = 0;        ///< front at 2 * operands * winding in windings_, then back
     std::uint32_t next = UINT32_MAX;  ///< next entry in the same hash slot
   };
   static std::size_t hash(const IntPoint& a, const IntPoint& b);
@@ -171,7 +171,7 @@ class CutHandover {
   const Polygon* t_ = nullptr;
   std::span<const Polygon* const> partner_;
   std::span<const std::uint32_t> operand_;
-  std::vector<Line> lines_;  ///< sorted by key
+  std::vector<Line> lines_;                        ///< sorted by key
   std::vector<CutEdge> piece_edges_, line_edges_;  ///< the pieces' edges on cut lines, by piece / by line
   std::vector<std::uint32_t> piece_begin_;         ///< piece m's in piece_edges_
   Wnv g_front_, g_back_;

@@ -32,9 +32,7 @@ namespace ember::core {
 namespace {
 
 /// A box's largest side (grid units): which of two triangles is the larger.
-std::int32_t extent(const Box32& b) {
-  return std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
-}
+std::int32_t extent(const Box32& b) { return std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]}); }
 
 using PairSink = tbb::enumerable_thread_specific<std::vector<std::pair<std::uint32_t, std::uint32_t>>>;
 
@@ -247,7 +245,8 @@ void meeting_pairs(const GridTriangles& grid, const Side& as, const Side& bs, co
   // rods' ~all-pairs to the end.)
   if (stop.load(std::memory_order_relaxed) || work.over.load(std::memory_order_relaxed)) return;
   const auto child = [&](std::size_t c) {
-    const NodePair w = split_a ? NodePair{2 * v.a + 1 + c, v.b, v.da + 1, v.db} : NodePair{v.a, 2 * v.b + 1 + c, v.da, v.db + 1};
+    const NodePair w =
+        split_a ? NodePair{2 * v.a + 1 + c, v.b, v.da + 1, v.db} : NodePair{v.a, 2 * v.b + 1 + c, v.da, v.db + 1};
     if (nodes_may_meet(as, w.a, bs, w.b)) meeting_pairs(grid, as, bs, w, sink, work, stop, wide);
   };
   tbb::parallel_invoke([&] { child(0); }, [&] { child(1); });
@@ -373,9 +372,11 @@ Components untouched_components(const GridTriangles& grid, std::span<const char>
   // Each member takes its root's rank among the roots, in two parallel
   // passes (a serial pass over every triangle did it in one).
   FillVector<std::uint32_t> rank(n);  // written at the roots only, and read only there
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, c.roots.size(), 16384), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t k = r.begin(); k != r.end(); ++k) rank[c.roots[k]] = static_cast<std::uint32_t>(k);
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, c.roots.size(), 16384),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t k = r.begin(); k != r.end(); ++k)
+                        rank[c.roots[k]] = static_cast<std::uint32_t>(k);
+                    });
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i)
       if (untouched[i]) c.index[i] = rank[c.index[i]];
@@ -386,8 +387,8 @@ Components untouched_components(const GridTriangles& grid, std::span<const char>
 /// An untouched triangle across one of t's input edges along which piece f
 /// has an edge (of positive length: f is strictly convex), or kNoNeighbor.
 /// f's edges on t's edges keep t's edge planes (clip copies them).
-std::uint32_t untouched_neighbour_along(const Polygon& f, const Polygon& t, const std::array<std::uint32_t, 3>& neighbours,
-                                        std::span<const char> touched) {
+std::uint32_t untouched_neighbour_along(const Polygon& f, const Polygon& t,
+                                        const std::array<std::uint32_t, 3>& neighbours, std::span<const char> touched) {
   for (int k = 0; k < 3; ++k) {
     const std::uint32_t u = neighbours[k];
     if (u == kNoNeighbor || touched[u]) continue;
@@ -402,8 +403,14 @@ class SolidSolver {
  public:
   SolidSolver(const GridTriangles& grid, const Box& box, const SolveContext& ctx, const OperandTrees& trees,
               const Partners& partners, const std::atomic<bool>& stop)
-      : grid_(grid), ctx_(ctx), trees_(trees), partners_(partners), stop_(stop), operands_(ctx.operands),
-        tracer_{grid.corners, trees, box, ctx.operands}, touched_(touched_flags(partners, grid.corners.size())) {
+      : grid_(grid),
+        ctx_(ctx),
+        trees_(trees),
+        partners_(partners),
+        stop_(stop),
+        operands_(ctx.operands),
+        tracer_{grid.corners, trees, box, ctx.operands},
+        touched_(touched_flags(partners, grid.corners.size())) {
     comps_ = untouched_components(grid, touched_);
   }
 
@@ -412,22 +419,24 @@ class SolidSolver {
   bool classify_components() {
     comp_w_.assign(2 * operands_ * comps_.roots.size(), 0);  // per component: front, then back
     std::atomic<bool> failed{false};
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, comps_.roots.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
-      TraceScratch sc;
-      Polygon t;
-      Wnv front, back;
-      for (std::size_t k = r.begin(); k != r.end() && !failed.load() && !stop_.load(); ++k) {
-        const std::uint32_t id = comps_.roots[k];
-        const std::array<IntPoint, 3>& c = grid_.corners[id];
-        assign_triangle(c[0], c[1], c[2], t);
-        if (!classify_from_outside(tracer_, t, trees_.operand_of(id), std::uint64_t{id} << 20, front, back, sc)) {
-          failed = true;
-          break;
-        }
-        std::copy(front.begin(), front.end(), comp_w_.begin() + static_cast<std::ptrdiff_t>(2 * operands_ * k));
-        std::copy(back.begin(), back.end(), comp_w_.begin() + static_cast<std::ptrdiff_t>(2 * operands_ * k + operands_));
-      }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, comps_.roots.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
+          TraceScratch sc;
+          Polygon t;
+          Wnv front, back;
+          for (std::size_t k = r.begin(); k != r.end() && !failed.load() && !stop_.load(); ++k) {
+            const std::uint32_t id = comps_.roots[k];
+            const std::array<IntPoint, 3>& c = grid_.corners[id];
+            assign_triangle(c[0], c[1], c[2], t);
+            if (!classify_from_outside(tracer_, t, trees_.operand_of(id), std::uint64_t{id} << 20, front, back, sc)) {
+              failed = true;
+              break;
+            }
+            std::copy(front.begin(), front.end(), comp_w_.begin() + static_cast<std::ptrdiff_t>(2 * operands_ * k));
+            std::copy(back.begin(), back.end(),
+                      comp_w_.begin() + static_cast<std::ptrdiff_t>(2 * operands_ * k + operands_));
+          }
+        });
     return !failed && !stop_.load();
   }
 
@@ -438,7 +447,8 @@ class SolidSolver {
   bool solve_touched(std::vector<std::vector<OutputPolygon>>& chunk_out) const {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> chunks;  // (operand, first slot)
     for (std::uint32_t o = 0; o < operands_; ++o)
-      for (std::size_t s = 0; s < trees_.tree[o].size(); s += kChunk) chunks.emplace_back(o, static_cast<std::uint32_t>(s));
+      for (std::size_t s = 0; s < trees_.tree[o].size(); s += kChunk)
+        chunks.emplace_back(o, static_cast<std::uint32_t>(s));
     chunk_out.assign(chunks.size(), {});
     std::atomic<bool> failed{false};
     // The built polygons outlive a range of chunks: a pile's triangles share
@@ -446,11 +456,12 @@ class SolidSolver {
     // pile's 200 one-chunk operands built each of ~2,000 partners once per
     // range of chunks). Their content depends only on the id.
     tbb::enumerable_thread_specific<PolygonCache> caches([&] { return PolygonCache(grid_); });
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
-      ChunkScratch cs(caches.local(), operands_);
-      for (std::size_t c = r.begin(); c != r.end() && !failed.load() && !stop_.load(); ++c)
-        if (!solve_chunk(chunks[c].first, chunks[c].second, cs, chunk_out[c], failed)) failed = true;
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        ChunkScratch cs(caches.local(), operands_);
+                        for (std::size_t c = r.begin(); c != r.end() && !failed.load() && !stop_.load(); ++c)
+                          if (!solve_chunk(chunks[c].first, chunks[c].second, cs, chunk_out[c], failed)) failed = true;
+                      });
     return !failed && !stop_.load();
   }
 
@@ -469,7 +480,9 @@ class SolidSolver {
     }
     return parallel_select<KeptTriangle>(
         grid_.corners.size(), [&](std::size_t i) { return !touched_[i] && keep[comps_.index[i]] != 0; },
-        [&](std::size_t i) { return KeptTriangle{static_cast<std::uint32_t>(i), keep[comps_.index[i]] == 2}; });
+        [&](std::size_t i) {
+          return KeptTriangle{static_cast<std::uint32_t>(i), keep[comps_.index[i]] == 2};
+        });
   }
 
   /// Step 4: the kept untouched triangles by id, then the chunks in order.
@@ -481,15 +494,16 @@ class SolidSolver {
     // An untouched triangle whose neighbours are all untouched is settled
     // (OutputPolygon::settled): no other operand comes near it or them, and
     // its own operand meets it only in shared vertices and these edges.
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t k = r.begin(); k != r.end(); ++k) {
-        const std::uint32_t id = kept[k].id;
-        OutputPolygon& o = out[k];
-        o = output_of(grid_, id, trees_.operand_of(id), nullptr, kept[k].flip);
-        o.settled = std::none_of(grid_.neighbors[id].begin(), grid_.neighbors[id].end(),
-                                 [&](std::uint32_t j) { return j == kNoNeighbor || touched_[j]; });
-      }
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept.size(), 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                          const std::uint32_t id = kept[k].id;
+                          OutputPolygon& o = out[k];
+                          o = output_of(grid_, id, trees_.operand_of(id), nullptr, kept[k].flip);
+                          o.settled = std::none_of(grid_.neighbors[id].begin(), grid_.neighbors[id].end(),
+                                                   [&](std::uint32_t j) { return j == kNoNeighbor || touched_[j]; });
+                        }
+                      });
     tbb::parallel_for(std::size_t{0}, chunk_out.size(), [&](std::size_t c) {
       std::move(chunk_out[c].begin(), chunk_out[c].end(), out.begin() + static_cast<std::ptrdiff_t>(at[c]));
     });
@@ -577,7 +591,8 @@ class SolidSolver {
     PieceWindings& pw = cs.windings;
     pw.reset(n, operands_);
     for (std::size_t m = 0; m < n; ++m)
-      if (known_across_input_edge(pieces[m].poly, t, id, o, cs.handover, cs.front, cs.back)) pw.store(m, cs.front, cs.back);
+      if (known_across_input_edge(pieces[m].poly, t, id, o, cs.handover, cs.front, cs.back))
+        pw.store(m, cs.front, cs.back);
     if (pw.complete()) return true;
     // A coplanar partner blocks every cut line (CutHandover): the rest is traced.
     if (std::find(cs.cut.coplanar.begin(), cs.cut.coplanar.end(), 1) != cs.cut.coplanar.end())
@@ -685,8 +700,8 @@ std::optional<std::vector<OutputPolygon>> solve_solid(const GridTriangles& grid,
 }
 
 std::optional<FillVector<KeptTriangle>> solid_untouched(const GridTriangles& grid, const Box& box,
-                                                         const SolveContext& ctx, const OperandTrees& trees,
-                                                         const Partners& partners, const std::atomic<bool>& stop) {
+                                                        const SolveContext& ctx, const OperandTrees& trees,
+                                                        const Partners& partners, const std::atomic<bool>& stop) {
   SolidSolver solver(grid, box, ctx, trees, partners, stop);
   if (!solver.classify_components()) return std::nullopt;
   return solver.kept_untouched();

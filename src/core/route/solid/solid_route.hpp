@@ -58,7 +58,9 @@ struct Partners {
   std::vector<std::uint32_t> begin, ids;
   bool gave_up = false;
   bool touched(std::uint32_t id) const { return begin[id + 1] > begin[id]; }
-  std::span<const std::uint32_t> of(std::uint32_t id) const { return {ids.data() + begin[id], begin[id + 1] - begin[id]}; }
+  std::span<const std::uint32_t> of(std::uint32_t id) const {
+    return {ids.data() + begin[id], begin[id + 1] - begin[id]};
+  }
 };
 
 /// A frame in which operands X and Y's slivers lie apart, if a sample of X's
@@ -120,7 +122,7 @@ struct KeptTriangle {
 /// surface, by id, classified by one trace per component. nullopt if a
 /// trace failed or `stop` was set.
 std::optional<FillVector<KeptTriangle>> solid_untouched(const GridTriangles& grid, const Box& box,
-                                                         const SolveContext& ctx, const OperandTrees& trees,
-                                                         const Partners& partners, const std::atomic<bool>& stop);
+                                                        const SolveContext& ctx, const OperandTrees& trees,
+                                                        const Partners& partners, const std::atomic<bool>& stop);
 
 }  // namespace ember::core

@@ -16,7 +16,8 @@ namespace {
 /// on the solid path, root_problem.hpp).
 template <typename Visit>
 bool for_each_met_in(std::span<const std::array<IntPoint, 3>> corners, const TriangleTree& tree, std::uint32_t first,
-                     std::uint32_t operand, const AxisSegment& seg, const Box32& query, TraceScratch& sc, Visit& visit) {
+                     std::uint32_t operand, const AxisSegment& seg, const Box32& query, TraceScratch& sc,
+                     Visit& visit) {
   bool ok = true;
   tree.for_each_overlapping(query, [&](std::uint32_t item) {
     if (!ok) return;

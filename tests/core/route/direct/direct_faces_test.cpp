@@ -111,12 +111,14 @@ TEST(DirectFaces, CrossingOrderMatchesTheRationalParameters) {
 /// The rational oracle's view of two triangles x (operand 0) and y
 /// (operand 1): what pair_chord must answer.
 struct OracleChord {
-  bool general = false;  ///< in general position, crossing along one chord
+  bool general = false;                      ///< in general position, crossing along one chord
   std::array<core::CrossingName, 2> ends{};  ///< start, then end along n_x x n_y
 };
 
 using Vec = std::array<mpq_class, 3>;
-Vec vec(const IntPoint& p) { return {mpq_class(static_cast<long>(p.x)), mpq_class(static_cast<long>(p.y)), mpq_class(static_cast<long>(p.z))}; }
+Vec vec(const IntPoint& p) {
+  return {mpq_class(static_cast<long>(p.x)), mpq_class(static_cast<long>(p.y)), mpq_class(static_cast<long>(p.z))};
+}
 Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 Vec cross(const Vec& a, const Vec& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
@@ -126,7 +128,8 @@ mpq_class dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a
 /// Rational: the points where one triangle's edges cross the other's plane
 /// strictly, kept if strictly inside the other; any such point on the
 /// other's boundary, or a corner on the other's plane, is not general position.
-OracleChord oracle_chord(const std::array<IntPoint, 3>& x, const std::array<IntPoint, 3>& y, const core::EdgeNames& names) {
+OracleChord oracle_chord(const std::array<IntPoint, 3>& x, const std::array<IntPoint, 3>& y,
+                         const core::EdgeNames& names) {
   const std::array<const std::array<IntPoint, 3>*, 2> tri{&x, &y};
   std::array<Vec, 2> normal;
   for (int k = 0; k < 2; ++k) {
@@ -157,7 +160,8 @@ OracleChord oracle_chord(const std::array<IntPoint, 3>& x, const std::array<IntP
         zero += s == 0;
       }
       if (positive + zero == 3 && zero > 0) return out;  // on the other's boundary
-      if (positive == 3) inside.push_back({{names.edge_key(static_cast<std::uint32_t>(k), i), static_cast<std::uint32_t>(1 - k)}, p});
+      if (positive == 3)
+        inside.push_back({{names.edge_key(static_cast<std::uint32_t>(k), i), static_cast<std::uint32_t>(1 - k)}, p});
     }
   }
   if (inside.size() != 2) return out;

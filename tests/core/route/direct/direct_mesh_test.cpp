@@ -38,8 +38,8 @@ TEST(DirectMesh, TakenWhenTwoSolidsMeetInGeneralPosition) {
   BooleanOptions polygons;
   polygons.output = BooleanOptions::Output::Polygons;
   EXPECT_FALSE(boolean(ops, Op::Union, polygons).stats.direct_mesh);
-  const std::vector<Mesh> three = snapped({icosphere({0, 0, 0}, 1.0, 2), icosphere({0.7, 0.1, 0.05}, 0.8, 2),
-                                           icosphere({0.2, 0.6, -0.1}, 0.7, 2)});
+  const std::vector<Mesh> three =
+      snapped({icosphere({0, 0, 0}, 1.0, 2), icosphere({0.7, 0.1, 0.05}, 0.8, 2), icosphere({0.2, 0.6, -0.1}, 0.7, 2)});
   const BooleanResult r3 = run_checked(three, Op::Union);
   EXPECT_TRUE(r3.stats.solid_path);
   EXPECT_FALSE(r3.stats.direct_mesh);
@@ -70,9 +70,9 @@ TEST(DirectMesh, NestedClosedCurvesAndTheSameMeshAtEveryThreadCount) {
   }
   // Two tori side by side and one inside the other's hole: several curves,
   // one of them inside another, in the same triangle.
-  const std::vector<Mesh> rings = snapped({box({-2, -2, -2}, {2, 2, 2}),
-                                           merge({torus({1.0, -0.3, 2.013}, 0.3, 0.08, 24, 12),
-                                                  torus({1.0, -0.3, 1.991}, 0.12, 0.04, 16, 10)})});
+  const std::vector<Mesh> rings =
+      snapped({box({-2, -2, -2}, {2, 2, 2}),
+               merge({torus({1.0, -0.3, 2.013}, 0.3, 0.08, 24, 12), torus({1.0, -0.3, 1.991}, 0.12, 0.04, 16, 10)})});
   for (const Op op : kOps) run_direct(rings, op);
 }
 
@@ -80,8 +80,8 @@ TEST(DirectMesh, ContactsThatAreNotTransversalTakeThePieces) {
   // Coplanar top faces, and a corner resting on a face: the same exact
   // result through the solid path's pieces and the mesh stage.
   const std::vector<Mesh> coplanar = snapped({box({-2, -2, -2}, {2, 2, 2}), box({-1, -1, 1}, {1, 1, 2})});
-  const std::vector<Mesh> corner =
-      snapped({box({-2, -2, -2}, {2, 2, 2}), tetrahedron({0.3, 0.2, 2.0}, {1.0, 0.1, 3.0}, {0.1, 1.0, 3.1}, {0.7, 0.8, 2.6})});
+  const std::vector<Mesh> corner = snapped(
+      {box({-2, -2, -2}, {2, 2, 2}), tetrahedron({0.3, 0.2, 2.0}, {1.0, 0.1, 3.0}, {0.1, 1.0, 3.1}, {0.7, 0.8, 2.6})});
   for (const auto& ops : {coplanar, corner})
     for (const Op op : kOps) {
       const BooleanResult r = run_checked(ops, op);

@@ -20,7 +20,8 @@ using Tri = std::array<IntPoint, 3>;
 /// limit, plus triangles that touch a strip at one of its corners and
 /// triangles whose corner is the midpoint of a strip's long edge (`contacts`:
 /// pairs that touch although no corner is shared).
-std::vector<Tri> strip_pile(std::int64_t origin, int strips, std::vector<std::array<std::size_t, 2>>* contacts = nullptr) {
+std::vector<Tri> strip_pile(std::int64_t origin, int strips,
+                            std::vector<std::array<std::size_t, 2>>* contacts = nullptr) {
   std::vector<Tri> tris;
   const IntPoint dir{400000, -800000, 80000};  // the pile's direction (length ~9e5)
   for (int s = 0; s < strips; ++s) {
@@ -38,7 +39,8 @@ std::vector<Tri> strip_pile(std::int64_t origin, int strips, std::vector<std::ar
     const Tri& t = tris[rng() % tris.size()];
     const IntPoint& c = t[rng() % 3];
     const auto off = [&] { return static_cast<std::int64_t>(rng() % 2001) - 1000; };
-    tris.push_back({c, IntPoint{c.x + off(), c.y + off(), c.z + 1 + (off() & 511)}, IntPoint{c.x + off(), c.y + off(), c.z - 1}});
+    tris.push_back(
+        {c, IntPoint{c.x + off(), c.y + off(), c.z + 1 + (off() & 511)}, IntPoint{c.x + off(), c.y + off(), c.z - 1}});
   }
   for (int k = 0; contacts && k < 400; ++k) {
     const std::size_t s = 2 * (rng() % static_cast<std::size_t>(strips));  // a strip's first triangle: a, b, far
@@ -149,7 +151,8 @@ std::vector<Tri> needle_bundle(std::int64_t origin, const IntPoint& dir, const I
   for (int a = 0; a < 32; ++a)
     for (int b = 0; b < 32; ++b) {
       const IntPoint p{origin + 100 * a, origin, origin + 100 * b};
-      tris.push_back({p, IntPoint{p.x + base.x, p.y + base.y, p.z + base.z}, IntPoint{p.x + dir.x, p.y + dir.y, p.z + dir.z}});
+      tris.push_back(
+          {p, IntPoint{p.x + base.x, p.y + base.y, p.z + base.z}, IntPoint{p.x + dir.x, p.y + dir.y, p.z + dir.z}});
     }
   return tris;
 }
@@ -186,20 +189,22 @@ TEST(FrameBoxes, ScanReturnsExactlyTheOverlappingBoxes) {
         if (j != i && !frame.apart(i, j)) want.push_back(j);
       expect_scans_answer(frame, i, want);
       frame.scan(i, got);
-      if (i >= needles) wide_meets_needle += std::count_if(got.begin(), got.end(), [&](std::uint32_t j) { return j < needles; });
+      if (i >= needles)
+        wide_meets_needle += std::count_if(got.begin(), got.end(), [&](std::uint32_t j) { return j < needles; });
       if (frame.overlapping(i, query, grid)) {
         EXPECT_EQ(grid, got) << "polygon " << i;
         // The needles' answers include the wide triangles they meet (the
         // grid's wide pass), not only their cells' members.
-        answered_pairs += static_cast<std::size_t>(std::count_if(grid.begin(), grid.end(), [&](std::uint32_t j) { return j >= needles; }));
+        answered_pairs += static_cast<std::size_t>(
+            std::count_if(grid.begin(), grid.end(), [&](std::uint32_t j) { return j >= needles; }));
       } else {
         ++declined;
       }
     }
-    EXPECT_GE(declined, 12u);             // the wide triangles are scanned, not looked up
-    EXPECT_LT(declined, needles / 2);     // the needles are looked up
-    EXPECT_GT(wide_meets_needle, 12u);    // each wide triangle meets needles' boxes
-    EXPECT_GT(answered_pairs, 12u);       // ... which the grid's answers for the needles include
+    EXPECT_GE(declined, 12u);           // the wide triangles are scanned, not looked up
+    EXPECT_LT(declined, needles / 2);   // the needles are looked up
+    EXPECT_GT(wide_meets_needle, 12u);  // each wide triangle meets needles' boxes
+    EXPECT_GT(answered_pairs, 12u);     // ... which the grid's answers for the needles include
   }
 }
 
@@ -254,7 +259,8 @@ TEST(FrameBoxes, OperandFramesSeparateTwoBundlesAtASmallAngle) {
   for (const std::int64_t origin : {std::int64_t{1000}, kCoordLimit - 2000000}) {
     std::vector<Tri> tris = needle_bundle(origin, dir);
     const std::size_t first = tris.size();
-    for (const Tri& t : needle_bundle(origin, IntPoint{dir.x + tilt.x, dir.y + tilt.y, dir.z + tilt.z})) tris.push_back(t);
+    for (const Tri& t : needle_bundle(origin, IntPoint{dir.x + tilt.x, dir.y + tilt.y, dir.z + tilt.z}))
+      tris.push_back(t);
     std::vector<std::uint32_t> operand(tris.size(), 1);
     std::fill(operand.begin(), operand.begin() + static_cast<std::ptrdiff_t>(first), 0);
     std::vector<std::array<std::size_t, 2>> contacts;

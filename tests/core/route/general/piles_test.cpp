@@ -38,7 +38,8 @@ Mesh diagonal_prism(int n, double length, double turn, double shift) {
   Mesh m;
   const auto point = [&](double angle, double along) {
     const double c = std::cos(angle), sn = std::sin(angle);
-    return Vec3d{c * u[0] + sn * v[0] + along * d[0], c * u[1] + sn * v[1] + along * d[1], c * u[2] + sn * v[2] + along * d[2]};
+    return Vec3d{c * u[0] + sn * v[0] + along * d[0], c * u[1] + sn * v[1] + along * d[1],
+                 c * u[2] + sn * v[2] + along * d[2]};
   };
   const auto id = [&](int i, int ring) { return static_cast<std::uint32_t>(2 * (i % n) + ring); };
   for (int i = 0; i < n; ++i) {
@@ -174,11 +175,15 @@ TEST(Piles, DecimalShiftedCubesAllOperations) {
   EXPECT_NEAR(volume(u.mesh), 2.99, 1e-6);
   const std::vector<Mesh> few(cubes.begin(), cubes.begin() + 40);
   EXPECT_NEAR(volume(run_checked(few, Operation::Intersection, opt, 0).mesh), 0.61, 1e-6);
-  EXPECT_NEAR(volume(run_checked(few, Operation::AtLeastK, [] {
-                       BooleanOptions o;
-                       o.min_k = 20;
-                       return o;
-                     }(), 0).mesh),
+  EXPECT_NEAR(volume(run_checked(
+                         few, Operation::AtLeastK,
+                         [] {
+                           BooleanOptions o;
+                           o.min_k = 20;
+                           return o;
+                         }(),
+                         0)
+                         .mesh),
               1.01, 1e-6);  // x in [0.19, 1.20]: inside at least 20 of the 40 cubes
   EXPECT_NEAR(volume(run_checked({cubes[0], cubes[50]}, Operation::Difference, opt, 0).mesh), 0.5, 1e-6);
   EXPECT_NEAR(volume(run_checked({cubes[0], cubes[50]}, Operation::Xor, opt, 0).mesh), 1.0, 1e-6);

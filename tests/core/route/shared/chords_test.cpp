@@ -98,8 +98,8 @@ TEST(Chords, TouchingThroughAnEdgeCrossingAtLargeCoordinates) {
     const std::int64_t t = k(rng);
     const IntPoint w{p.x + t * d.x / 8, p.y + t * d.y / 8, p.z + t * d.z / 8};
     const auto a = triangle(p, q, r);
-    const auto b = triangle(w, {w.x + off(rng), w.y + off(rng), w.z + off(rng)},
-                            {w.x + off(rng), w.y + off(rng), w.z + off(rng)});
+    const auto b =
+        triangle(w, {w.x + off(rng), w.y + off(rng), w.z + off(rng)}, {w.x + off(rng), w.y + off(rng), w.z + off(rng)});
     if (!a || !b) continue;
     const int before = out.tested;
     check_pair(*a, *b, out);
@@ -116,8 +116,10 @@ TEST(Chords, RandomFullRangePairsAreDecidedSoundly) {
   Outcome out;
   for (int n = 0; n < 40000; ++n) {
     const IntPoint o{big(rng), big(rng), big(rng)};
-    const auto near = [&] { return IntPoint{std::clamp(o.x + small(rng), -m, m), std::clamp(o.y + small(rng), -m, m),
-                                            std::clamp(o.z + small(rng), -m, m)}; };
+    const auto near = [&] {
+      return IntPoint{std::clamp(o.x + small(rng), -m, m), std::clamp(o.y + small(rng), -m, m),
+                      std::clamp(o.z + small(rng), -m, m)};
+    };
     const auto a = triangle(near(), near(), near());
     const auto b = triangle(near(), near(), near());
     if (a && b) check_pair(*a, *b, out);
@@ -140,7 +142,9 @@ int check_shortcut(const Polygon& t, const Polygon& p, const Polygon& q, int& wr
       if (parallel(t.support, other->support)) continue;
       const std::vector<std::int8_t> sa = sides(*piece, other->support), sb = sides(*other, t.support);
       // What the leaf asks about: the piece straddles the other's plane, which meets t's.
-      const auto has = [](const std::vector<std::int8_t>& s, int v) { return std::find(s.begin(), s.end(), v) != s.end(); };
+      const auto has = [](const std::vector<std::int8_t>& s, int v) {
+        return std::find(s.begin(), s.end(), v) != s.end();
+      };
       if (!has(sa, -1) || !has(sa, 1) || !(has(sb, 0) || (has(sb, -1) && has(sb, 1)))) continue;
       std::vector<Plane> cons;
       chord_constraints(*piece, sa, cons);

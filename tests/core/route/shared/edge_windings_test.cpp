@@ -90,8 +90,8 @@ std::vector<OutputPolygon> solve_as_one_leaf(const Scene& s, Operation op, const
 /// Solves the scene with and without shared windings and compares; returns
 /// how many pieces were emitted (some operations give nothing on twins).
 std::size_t expect_same_leaf(const Scene& s, Operation op, const std::vector<char>& solid) {
-  SCOPED_TRACE("operation " + std::to_string(static_cast<int>(op)) + ", solid flags " +
-               std::to_string(solid[0]) + "..");
+  SCOPED_TRACE("operation " + std::to_string(static_cast<int>(op)) + ", solid flags " + std::to_string(solid[0]) +
+               "..");
   const std::vector<OutputPolygon> traced = solve_as_one_leaf(s, op, solid, false);
   const std::vector<OutputPolygon> shared = solve_as_one_leaf(s, op, solid, true);
   EXPECT_EQ(shared.size(), traced.size());
@@ -249,7 +249,8 @@ TEST(EdgeWindings, NeighbourOrderReachesEachGroupThroughSharedEdges) {
     soup.push_back(unbuilt_triangle(s.tris[perm[i]], static_cast<std::uint32_t>(i), s.operand[perm[i]]));
   const auto key = [](const IntPoint& a, const IntPoint& b) {
     std::array<std::int64_t, 6> k{a.x, a.y, a.z, b.x, b.y, b.z};
-    if (std::array<std::int64_t, 3>{b.x, b.y, b.z} < std::array<std::int64_t, 3>{a.x, a.y, a.z}) k = {b.x, b.y, b.z, a.x, a.y, a.z};
+    if (std::array<std::int64_t, 3>{b.x, b.y, b.z} < std::array<std::int64_t, 3>{a.x, a.y, a.z})
+      k = {b.x, b.y, b.z, a.x, a.y, a.z};
     return k;
   };
   const auto share_edge = [&](std::size_t p, std::size_t q) {

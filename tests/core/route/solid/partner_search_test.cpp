@@ -71,8 +71,8 @@ TEST(PartnerSearch, FindsExactlyTheMeetingPairsOfCrowdedSoups) {
   std::size_t meeting = 0;
   for (const std::int64_t range : {std::int64_t{4}, std::int64_t{40}, std::int64_t{1000}})
     for (const std::size_t n : {std::size_t{1}, std::size_t{9}, std::size_t{200}})
-      expect_exact_partners({random_triangles(rng, n, range, range / 2 + 1), random_triangles(rng, 150, range, range / 3 + 1)},
-                            meeting);
+      expect_exact_partners(
+          {random_triangles(rng, n, range, range / 2 + 1), random_triangles(rng, 150, range, range / 3 + 1)}, meeting);
   EXPECT_GT(meeting, 1000u) << meeting;  // the soups do meet, touching included
 }
 
@@ -90,9 +90,9 @@ TEST(PartnerSearch, FindsExactlyTheMeetingPairsAtTheGridsFullRange) {
 TEST(PartnerSearch, ThreeOperandsPairEveryTwo) {
   std::mt19937 rng(73);
   std::size_t meeting = 0;
-  expect_exact_partners({random_triangles(rng, 100, 20, 10), random_triangles(rng, 60, 20, 10),
-                         random_triangles(rng, 80, 20, 10)},
-                        meeting);
+  expect_exact_partners(
+      {random_triangles(rng, 100, 20, 10), random_triangles(rng, 60, 20, 10), random_triangles(rng, 80, 20, 10)},
+      meeting);
   EXPECT_GT(meeting, 200u) << meeting;
 }
 

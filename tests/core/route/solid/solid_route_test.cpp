@@ -24,8 +24,8 @@ TEST(SolidPath, RunsExactlyWhenEveryOperandIsSolid) {
   general.detect_solid = false;
   EXPECT_FALSE(run_checked(ops, Op::Union, general).stats.solid_path);
   // One operand not solid (two overlapping balls): the subdivision solves.
-  const std::vector<Mesh> mixed =
-      snapped({merge({icosphere({0, 0, 0}, 1.0, 2), icosphere({0.5, 0, 0}, 1.0, 2)}), box({-0.2, -0.2, -2}, {0.3, 0.3, 2})});
+  const std::vector<Mesh> mixed = snapped(
+      {merge({icosphere({0, 0, 0}, 1.0, 2), icosphere({0.5, 0, 0}, 1.0, 2)}), box({-0.2, -0.2, -2}, {0.3, 0.3, 2})});
   const BooleanResult r = run_checked(mixed, Op::Union);
   EXPECT_EQ(r.stats.solid_operands, 1u);
   EXPECT_FALSE(r.stats.solid_path);

@@ -96,9 +96,9 @@ TEST(SolidTrace, OwnWindingThroughTheTreeIsTheSoupScans) {
       TraceScratch sc;
       Polygon built;
       int front = 0, back = 0;
-      const bool traced = own_winding_from_outside(corners, trees[o], begin[o], pb.box, kOperands,
-                                                   built_polygon(pb.soup[t], built), o, std::uint64_t{t} << 20, front,
-                                                   back, sc);
+      const bool traced =
+          own_winding_from_outside(corners, trees[o], begin[o], pb.box, kOperands, built_polygon(pb.soup[t], built), o,
+                                   std::uint64_t{t} << 20, front, back, sc);
       if (!scanned || !traced) continue;
       ++compared;
       EXPECT_EQ(front, want_front[o]) << "triangle " << t;
