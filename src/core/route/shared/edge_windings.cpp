@@ -60,51 +60,7 @@ std::vector<std::uint32_t> edge_neighbour_order(const Soup& soup, std::size_t be
 }
 
 EdgeWindings::EdgeWindings(const std::vector<char>& closed, const Box& box, std::size_t expected_edges)
-    : operands_(closed.size()), closed_(closed), box_(box) {
-  if (expected_edges == 0) return;
-  entries_.reserve(expected_edges);
-  slots_.resize(std::bit_ceil(std::max<std::size_t>(64, 2 * expected_edges)));
-}
-
-std::size_t EdgeWindings::hash(const EdgeKey& k) {
-  // The table takes the low bits: finish with a multiply-xorshift so that
-  // they depend on every coordinate (grid points are highly structured, and
-  // linear probing suffers from clustered low bits).
-  std::uint64_t h = 0x9E3779B97F4A7C15ull;
-  for (const std::int64_t v : {k.a.x, k.a.y, k.a.z, k.b.x, k.b.y, k.b.z})
-    h = (h ^ static_cast<std::uint64_t>(v)) * 0xFF51AFD7ED558CCDull;
-  h ^= h >> 32;
-  h *= 0xC4CEB9FE1A85EC53ull;
-  return static_cast<std::size_t>(h ^ (h >> 29));
-}
-
-std::uint32_t EdgeWindings::first_entry(const EdgeKey& k) const {
-  if (slots_.empty()) return UINT32_MAX;
-  const std::size_t mask = slots_.size() - 1;
-  for (std::size_t i = hash(k) & mask;; i = (i + 1) & mask) {
-    const Slot& s = slots_[i];
-    if (s.head == UINT32_MAX || s.key == k) return s.head;
-  }
-}
-
-std::uint32_t& EdgeWindings::first_entry_slot(const EdgeKey& k) {
-  if (2 * (used_ + 1) > slots_.size()) {  // keep at most half full: short probe runs
-    std::vector<Slot> old = std::exchange(slots_, std::vector<Slot>(std::max<std::size_t>(64, 2 * slots_.size())));
-    used_ = 0;
-    for (const Slot& s : old)
-      if (s.head != UINT32_MAX) first_entry_slot(s.key) = s.head;
-  }
-  const std::size_t mask = slots_.size() - 1;
-  for (std::size_t i = hash(k) & mask;; i = (i + 1) & mask) {
-    Slot& s = slots_[i];
-    if (s.head == UINT32_MAX) {
-      s.key = k;
-      ++used_;
-      return s.head;
-    }
-    if (s.key == k) return s.head;
-  }
-}
+    : operands_(closed.size()), closed_(closed), box_(box), table_(closed.size(), expected_edges) {}
 
 void EdgeWindings::begin_polygon(const Soup& soup, const SoupPolygon& t, std::span<const std::uint32_t> related) {
   soup_ = &soup;
@@ -171,7 +127,7 @@ bool EdgeWindings::on_inner_side(const SoupPolygon& o, const Plane& support, con
 /// Whether entry e (a piece edge on input edge k's line, recorded from the
 /// other side) can hand its winding numbers to the current piece's edge
 /// from -> to on that line.
-bool EdgeWindings::usable(const Entry& e, int k, const Point& from, const Point& to) const {
+bool EdgeWindings::usable(const PieceEdgeTable::Entry& e, int k, const Point& from, const Point& to) const {
   const SoupPolygon& s = (*soup_)[e.source];
   if (s.operand != t_->operand) return false;
   const InputEdge& edge = edges_[k];
@@ -214,8 +170,8 @@ bool EdgeWindings::find(const Polygon& f, std::span<const char> need_front, std:
     if (edges_[k].state == kUnknown) classify_edge(k);
     if (edges_[k].state == kBlocked) continue;
     // Recorded from the other side.
-    for (std::uint32_t x = first_entry(EdgeKey{c[(k + 1) % 3], c[k]}); x != UINT32_MAX; x = entries_[x].next) {
-      const Entry& e = entries_[x];
+    for (std::uint32_t x = table_.first(c[(k + 1) % 3], c[k]); x != UINT32_MAX; x = table_.entry(x).next) {
+      const PieceEdgeTable::Entry& e = table_.entry(x);
       const std::size_t at = 2 * operands_ * e.winding;
       const char* valid = valid_.data() + at;
       bool covers = true, all = true;
@@ -224,8 +180,7 @@ bool EdgeWindings::find(const Polygon& f, std::span<const char> need_front, std:
         all &= valid[o] && valid[operands_ + o];
       }
       if (!covers || !usable(e, k, f.vertices[i], f.vertices[(i + 1) % n])) continue;
-      front.assign(windings_.begin() + at, windings_.begin() + at + operands_);
-      back.assign(windings_.begin() + at + operands_, windings_.begin() + at + 2 * operands_);
+      table_.windings(e.winding, front, back);
       full = all;
       return true;
     }
@@ -237,20 +192,11 @@ void EdgeWindings::record(const Polygon& f, const Wnv& front, const Wnv& back, s
                           std::span<const char> valid_back) {
   const std::array<IntPoint, 3>& c = *t_->corners;
   const std::size_t n = f.vertices.size();
-  const auto winding = static_cast<std::uint32_t>(windings_.size() / (2 * operands_));
-  bool stored = false;
   for (std::size_t i = 0; i < n; ++i) {
     const int k = input_edge_of(f.edges[i]);
-    if (k < 0) continue;
-    const auto x = static_cast<std::uint32_t>(entries_.size());
-    std::uint32_t& first = first_entry_slot(EdgeKey{c[k], c[(k + 1) % 3]});
-    entries_.push_back({f.vertices[i], f.vertices[(i + 1) % n], t_index_, winding, first});
-    first = x;
-    stored = true;
+    if (k >= 0) table_.add_edge(c[k], c[(k + 1) % 3], f.vertices[i], f.vertices[(i + 1) % n], t_index_);
   }
-  if (!stored) return;
-  windings_.insert(windings_.end(), front.begin(), front.end());
-  windings_.insert(windings_.end(), back.begin(), back.end());
+  if (!table_.store(front, back)) return;
   for (const std::span<const char> valid : {valid_front, valid_back})
     for (std::size_t o = 0; o < operands_; ++o) valid_.push_back(valid[o] && closed_[o]);
 }

@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "core/model/soup.hpp"
+#include "core/route/shared/piece_edge_table.hpp"
 
 namespace ember::core {
 
@@ -80,24 +81,6 @@ class EdgeWindings {
               std::span<const char> valid_back);
 
  private:
-  struct EdgeKey {
-    IntPoint a, b;
-    friend bool operator==(const EdgeKey&, const EdgeKey&) = default;
-  };
-  static std::size_t hash(const EdgeKey& k);
-  /// First entry recorded under `k` (UINT32_MAX: none). The table is flat
-  /// (open addressing, no allocation per edge: a node-based map's
-  /// allocations were the leaf's most frequent ones).
-  std::uint32_t first_entry(const EdgeKey& k) const;
-  /// The slot holding k's first entry, made (UINT32_MAX) if missing.
-  std::uint32_t& first_entry_slot(const EdgeKey& k);
-  /// One edge of a recorded piece on an input edge of its polygon.
-  struct Entry {
-    Point from, to;                   ///< the piece's edge, in its own direction
-    std::uint32_t source = 0;         ///< soup index of the piece's polygon
-    std::uint32_t winding = 0;        ///< index into windings_ / valid_
-    std::uint32_t next = UINT32_MAX;  ///< next entry under the same key
-  };
   /// Per input edge k of the current polygon.
   enum : std::uint8_t { kUnknown, kOpen, kBlocked };
   struct InputEdge {
@@ -111,7 +94,7 @@ class EdgeWindings {
   /// Which of f's edges lie on input edge k of the current polygon.
   int input_edge_of(const Plane& edge) const;
   void classify_edge(int k);
-  bool usable(const Entry& e, int k, const Point& from, const Point& to) const;
+  bool usable(const PieceEdgeTable::Entry& e, int k, const Point& from, const Point& to) const;
   /// Polygon o lies in `support` on the inner (negative) side of `edge`.
   bool on_inner_side(const SoupPolygon& o, const Plane& support, const Plane& edge) const;
 
@@ -123,15 +106,9 @@ class EdgeWindings {
   std::uint32_t t_index_ = 0;
   std::span<const std::uint32_t> related_;
   std::array<InputEdge, 3> edges_{};
-  struct Slot {
-    EdgeKey key;
-    std::uint32_t head = UINT32_MAX;  ///< UINT32_MAX: an empty slot
-  };
-  std::vector<Slot> slots_;  ///< power-of-two size, at most half full
-  std::size_t used_ = 0;
-  std::vector<Entry> entries_;
-  std::vector<int> windings_;  ///< per recorded piece: front then back, operands_ each
-  std::vector<char> valid_;    ///< same layout
+  PieceEdgeTable table_;
+  /// Per stored piece (PieceEdgeTable::windings): which front, then back values hold.
+  std::vector<char> valid_;  ///< 2 * operands per stored piece
 };
 
 }  // namespace ember::core

@@ -9,22 +9,7 @@
 
 namespace ember::core {
 
-std::size_t SolidHandover::hash(const IntPoint& a, const IntPoint& b) {
-  std::uint64_t h = 0;
-  for (const std::int64_t v : {a.x, a.y, a.z, b.x, b.y, b.z})
-    h = (h ^ static_cast<std::uint64_t>(v)) * 0x9e3779b97f4a7c15ULL;
-  return static_cast<std::size_t>(h ^ (h >> 29));
-}
-
-std::uint32_t& SolidHandover::slot(const IntPoint& a, const IntPoint& b) {
-  return slots_[hash(a, b) & (slots_.size() - 1)];
-}
-
-void SolidHandover::clear() {
-  entries_.clear();
-  windings_.clear();
-  std::fill(slots_.begin(), slots_.end(), UINT32_MAX);
-}
+void SolidHandover::clear() { table_.clear(); }
 
 void SolidHandover::begin_triangle(std::uint32_t id, const Polygon& t, std::span<const std::uint32_t> partners,
                                    const GridTriangles& grid) {
@@ -64,13 +49,11 @@ bool SolidHandover::find(const Polygon& f, Wnv& front, Wnv& back) {
     if (k < 0 || blocked(k)) continue;
     const IntPoint &a = c_[k], &b = c_[(k + 1) % 3];
     const Point &from = f.vertices[i], &to = f.vertices[(i + 1) % n];
-    for (std::uint32_t x = slot(b, a); x != UINT32_MAX; x = entries_[x].next) {
-      const Entry& e = entries_[x];
-      if (e.tri != neighbours_[k] || !(e.a == b) || !(e.b == a)) continue;
+    for (std::uint32_t x = table_.first(b, a); x != UINT32_MAX; x = table_.entry(x).next) {
+      const PieceEdgeTable::Entry& e = table_.entry(x);
+      if (e.source != neighbours_[k]) continue;
       if (!share_a_stretch(a, b, from, to, e.from, e.to)) continue;
-      const auto at = windings_.begin() + static_cast<std::ptrdiff_t>(2 * operands_ * e.winding);
-      front.assign(at, at + static_cast<std::ptrdiff_t>(operands_));
-      back.assign(at + static_cast<std::ptrdiff_t>(operands_), at + static_cast<std::ptrdiff_t>(2 * operands_));
+      table_.windings(e.winding, front, back);
       return true;
     }
   }
@@ -79,20 +62,11 @@ bool SolidHandover::find(const Polygon& f, Wnv& front, Wnv& back) {
 
 void SolidHandover::record(const Polygon& f, const Wnv& front, const Wnv& back) {
   const std::size_t n = f.vertices.size();
-  const auto winding = static_cast<std::uint32_t>(windings_.size() / (2 * operands_));
-  bool stored = false;
   for (std::size_t i = 0; i < n; ++i) {
     const int k = input_edge_of(f.edges[i]);
-    if (k < 0) continue;
-    const IntPoint &a = c_[k], &b = c_[(k + 1) % 3];
-    std::uint32_t& head = slot(a, b);
-    entries_.push_back({f.vertices[i], f.vertices[(i + 1) % n], a, b, id_, winding, head});
-    head = static_cast<std::uint32_t>(entries_.size() - 1);
-    stored = true;
+    if (k >= 0) table_.add_edge(c_[k], c_[(k + 1) % 3], f.vertices[i], f.vertices[(i + 1) % n], id_);
   }
-  if (!stored) return;
-  windings_.insert(windings_.end(), front.begin(), front.end());
-  windings_.insert(windings_.end(), back.begin(), back.end());
+  table_.store(front, back);
 }
 
 void PieceWindings::reset(std::size_t pieces, std::size_t operand_count) {

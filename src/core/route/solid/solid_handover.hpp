@@ -21,6 +21,7 @@
 
 #include "core/route/shared/pieces.hpp"
 #include "core/model/soup.hpp"
+#include "core/route/shared/piece_edge_table.hpp"
 #include "core/model/grid_triangles.hpp"
 #include "core/model/soup.hpp"
 
@@ -28,7 +29,7 @@ namespace ember::core {
 
 class SolidHandover {
  public:
-  explicit SolidHandover(std::size_t operands) : operands_(operands) {}
+  explicit SolidHandover(std::size_t operands) : table_(operands) {}
 
   /// Forgets every recorded piece (buffers are kept).
   void clear();
@@ -46,23 +47,11 @@ class SolidHandover {
   void record(const Polygon& f, const Wnv& front, const Wnv& back);
 
  private:
-  struct Entry {
-    Point from, to;                   ///< the piece's edge on the input edge, in its own direction
-    IntPoint a, b;                    ///< the input edge, in the piece's direction
-    std::uint32_t tri = 0;            ///< the piece's triangle
-    std::uint32_t winding = 0;        ///< front at 2 * operands * winding in windings_, then back
-    std::uint32_t next = UINT32_MAX;  ///< next entry in the same hash slot
-  };
-  static std::size_t hash(const IntPoint& a, const IntPoint& b);
-  std::uint32_t& slot(const IntPoint& a, const IntPoint& b);
   /// Which of t's edges, if any, the piece edge with plane `e` lies on.
   int input_edge_of(const Plane& e) const;
   bool blocked(int k);
 
-  std::size_t operands_;
-  std::vector<Entry> entries_;
-  std::vector<std::uint32_t> slots_ = std::vector<std::uint32_t>(1024, UINT32_MAX);  ///< chains by hash of (a, b)
-  std::vector<int> windings_;
+  PieceEdgeTable table_;  ///< pieces by input edge; sources are triangle ids
   // The current triangle.
   std::uint32_t id_ = 0;
   const Polygon* t_ = nullptr;
