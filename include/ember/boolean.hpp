@@ -69,12 +69,12 @@ struct BooleanOptions {
   /// Costs a fraction of the Boolean it speeds up; turn off only for inputs
   /// known to fail it.
   bool detect_solid = true;
-  /// When every operand is solid (promised or proven), solve without the kd
-  /// subdivision: only triangles that another operand's triangles come near
-  /// are cut and traced, the others are classified by connected components
-  /// (docs/design.md, "Solid path"). The result is the same surface. false
-  /// forces the subdivision (for comparisons).
-  bool solid_path = true;
+  /// Which routes may solve it. Automatic (default): the fastest exact one
+  /// whose preconditions hold; with every operand solid that is the solid
+  /// path, which needs no kd subdivision (docs/design.md, "Solid path").
+  /// General: always the paper's subdivision, which is exact for any input
+  /// and gives the same surface; for checking one route against the other.
+  enum class Route { Automatic, General } route = Route::Automatic;
   /// Output form. Triangles (default): an indexed triangle mesh, watertight
   /// wherever the exact result is closed (exact points welded, T-junctions
   /// resolved, coplanar pieces merged and re-triangulated exactly).
@@ -116,6 +116,12 @@ struct OperandReport {
   static constexpr std::size_t kMaxReportedPairs = 1000;
 };
 
+/// One figure of BooleanStats::diagnostics.
+struct Diagnostic {
+  std::string name;  ///< e.g. "solve_ms", "direct_mesh"
+  double value = 0;  ///< a count, a flag (0 or 1) or milliseconds, as the name says
+};
+
 struct BooleanStats {
   std::size_t input_triangles = 0;
   std::size_t dropped_degenerate = 0;   ///< triangles degenerate on the integer grid (collapsed or already degenerate)
@@ -125,37 +131,24 @@ struct BooleanStats {
   std::size_t output_polygons = 0;
   std::size_t dropped_slivers = 0;  ///< exact output slivers whose rounded vertices have zero area
   std::size_t solid_operands = 0;   ///< operands treated as solid (promised or proven)
-  /// Input triangles the subdivision had cut into pieces that all reached the
-  /// output uncut, passed on whole instead of as pieces.
-  std::size_t merged_triangles = 0;
-  /// The solid path solved it (BooleanOptions::solid_path): every operand solid.
-  bool solid_path = false;
-  /// The solid path made the triangle mesh straight from the intersection
-  /// curve (two operands meeting in general position, triangle output), with
-  /// no mesh stage: tjunctions_resolved and collinear_removed are 0 then,
-  /// `regions` counts the kept faces of cut triangles, and the mesh stage's
-  /// times are 0 but for triangulate_ms (its assembly).
-  bool direct_mesh = false;
   std::size_t output_vertices = 0;
-  /// Mesh stage (Output::Triangles): vertices inserted into edges they lay
-  /// on, boundary vertices removed as merely collinear, merged regions, and
-  /// regions that had to be triangulated piece by piece (may leave T-junctions).
-  std::size_t tjunctions_resolved = 0, collinear_removed = 0, regions = 0, fallback_regions = 0;
   /// Output triangles whose rounded (double) corners have zero area.
   std::size_t rounded_degenerate = 0;
   std::vector<OperandReport> operands;  ///< one per operand
-  double time_ms = 0;                   ///< quantization + core + export
-  /// Phases of time_ms: setup (validation, quantization, triangles, closedness),
-  /// solid proof, the exact core, and output (mesh stage or polygon export).
-  /// At more than one thread the solid path may start alongside the proof
-  /// (docs/design.md, "Pipeline"): proof_ms then ends when the proof does and
-  /// solve_ms is the rest of the solve.
-  double setup_ms = 0, proof_ms = 0, solve_ms = 0, output_ms = 0;
-  /// Steps of the mesh stage inside output_ms: exact weld, T-junction
-  /// insertion, region merge with collinear-vertex removal, triangulation and
-  /// assembly of the indexed mesh (zero with Output::Polygons).
-  double weld_ms = 0, tjunction_ms = 0, regions_ms = 0, triangulate_ms = 0;
-  int threads = 1;
+  double time_ms = 0;                   ///< quantization + core + export (no file I/O)
+  int threads = 1;                      ///< worker threads used
+  /// How the run went inside, for profiling and reports: the route taken,
+  /// what the mesh stage did, the time of each phase. Names and meanings:
+  /// docs/cli.md, "Statistics" (the CLI's --stats prints them all). A
+  /// figure may be added or removed between minor versions; look them up by
+  /// name (diagnostic()).
+  std::vector<Diagnostic> diagnostics;
+  /// The value of the diagnostic called `name`; 0 when the run did not record it.
+  double diagnostic(std::string_view name) const {
+    for (const Diagnostic& d : diagnostics)
+      if (d.name == name) return d.value;
+    return 0;
+  }
 };
 
 struct BooleanResult {

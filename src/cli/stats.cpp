@@ -39,6 +39,8 @@ void print_stats(const BooleanResult& r, const char* operation, const std::vecto
     if (!solid_check.empty()) solid_check += "; ";
     solid_check += (i < inputs.size() ? inputs[i] : "operand " + std::to_string(i)) + ": " + describe_solid_check(o);
   }
+  const auto count = [&](std::string_view name) { return static_cast<std::size_t>(s.diagnostic(name)); };
+  const auto flag = [&](std::string_view name) { return s.diagnostic(name) != 0 ? 1 : 0; };
   std::fprintf(stderr,
                "{\"version\": \"%s\", \"operation\": \"%s\", \"input_triangles\": %zu, \"dropped_degenerate\": %zu, "
                "\"collapsed_triangles\": %zu, \"flipped_triangles\": %zu, \"grid_step\": %.17g, "
@@ -53,11 +55,12 @@ void print_stats(const BooleanResult& r, const char* operation, const std::vecto
                "\"regions_ms\": %.3f, \"triangulate_ms\": %.3f, \"threads\": %d}\n",
                EMBER_VERSION, operation, s.input_triangles, s.dropped_degenerate, s.collapsed_triangles,
                s.flipped_triangles, s.grid_step, s.output_polygons, s.dropped_slivers, s.solid_operands,
-               s.merged_triangles, s.solid_path ? 1 : 0, s.direct_mesh ? 1 : 0, open_edges, pairs,
+               count("merged_triangles"), flag("solid_path"), flag("direct_mesh"), open_edges, pairs,
                pairs_complete ? 1 : 0, misoriented, json_string(solid_check).c_str(), s.output_vertices,
-               s.tjunctions_resolved, s.collinear_removed, s.regions, s.fallback_regions, s.rounded_degenerate,
-               s.time_ms, s.setup_ms, s.proof_ms, s.solve_ms, s.output_ms, s.weld_ms, s.tjunction_ms, s.regions_ms,
-               s.triangulate_ms, s.threads);
+               count("tjunctions_resolved"), count("collinear_removed"), count("regions"), count("fallback_regions"),
+               s.rounded_degenerate, s.time_ms, s.diagnostic("setup_ms"), s.diagnostic("proof_ms"),
+               s.diagnostic("solve_ms"), s.diagnostic("output_ms"), s.diagnostic("weld_ms"),
+               s.diagnostic("tjunction_ms"), s.diagnostic("regions_ms"), s.diagnostic("triangulate_ms"), s.threads);
 }
 
 }  // namespace ember::cli

@@ -74,22 +74,37 @@ void record_input(core::PreparedInput& in, BooleanResult& result) {
   s.dropped_degenerate = in.triangles.dropped_degenerate;
 }
 
-void record_output(core::BuiltOutput&& out, const core::RouteResult& route, BooleanResult& result) {
+/// The times of the phases (BooleanStats::diagnostics).
+struct PhaseTimes {
+  double setup_ms = 0, proof_ms = 0, solve_ms = 0, output_ms = 0;
+};
+
+/// The diagnostics, in the order the CLI's --stats prints them.
+std::vector<Diagnostic> diagnostics_of(const core::RouteResult& route, const core::MeshOutputStats& m,
+                                       const PhaseTimes& t) {
+  const auto count = [](std::size_t n) { return static_cast<double>(n); };
+  return {{"merged_triangles", count(route.merged_triangles)},
+          {"solid_path", route.solid_path ? 1.0 : 0.0},
+          {"direct_mesh", route.direct_mesh ? 1.0 : 0.0},
+          {"tjunctions_resolved", count(m.tjunctions)},
+          {"collinear_removed", count(m.collinear_removed)},
+          {"regions", count(m.regions)},
+          {"fallback_regions", count(m.fallback_regions)},
+          {"setup_ms", t.setup_ms},
+          {"proof_ms", t.proof_ms},
+          {"solve_ms", t.solve_ms},
+          {"output_ms", t.output_ms},
+          {"weld_ms", m.weld_ms},
+          {"tjunction_ms", m.tjunction_ms},
+          {"regions_ms", m.regions_ms},
+          {"triangulate_ms", m.triangulate_ms}};
+}
+
+void record_output(core::BuiltOutput&& out, BooleanResult& result) {
   BooleanStats& s = result.stats;
-  s.solid_path = route.solid_path;
-  s.direct_mesh = route.direct_mesh;
-  s.merged_triangles = route.merged_triangles;
   s.dropped_slivers = out.dropped_slivers;
   const core::MeshOutputStats& m = out.stats;
-  s.tjunctions_resolved = m.tjunctions;
-  s.collinear_removed = m.collinear_removed;
-  s.regions = m.regions;
-  s.fallback_regions = m.fallback_regions;
   s.rounded_degenerate = m.rounded_degenerate;
-  s.weld_ms = m.weld_ms;
-  s.tjunction_ms = m.tjunction_ms;
-  s.regions_ms = m.regions_ms;
-  s.triangulate_ms = m.triangulate_ms;
   if (m.fallback_regions)
     result.warnings.push_back(std::to_string(m.fallback_regions) +
                               " planar regions could not be merged and were triangulated piece by piece; the mesh "
@@ -152,22 +167,25 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   arena.execute([&] { in = core::prepare_input(operands, options.allow_open); });
   record_input(in, result);
   const auto setup_done = Clock::now();
-  result.stats.setup_ms = ms_between(start, setup_done);
+  PhaseTimes times;
+  times.setup_ms = ms_between(start, setup_done);
 
   Clock::time_point proved = setup_done;
   core::RouteResult route;
   if (!in.triangles.grid.corners.empty()) route = solve(in, op, options, threads, arena, result, proved);
-  result.stats.proof_ms = ms_between(setup_done, proved);
+  times.proof_ms = ms_between(setup_done, proved);
   const auto solved = Clock::now();
-  result.stats.solve_ms = ms_between(proved, solved);
+  times.solve_ms = ms_between(proved, solved);
 
   report(options, "export", 0.9);
   core::BuiltOutput out;
   arena.execute([&] { out = core::build_output(std::move(route), in, options.output); });
-  record_output(std::move(out), route, result);
+  const core::MeshOutputStats mesh_stats = out.stats;
+  record_output(std::move(out), result);
   const auto end = Clock::now();
-  result.stats.output_ms = ms_between(solved, end);
+  times.output_ms = ms_between(solved, end);
   result.stats.time_ms = ms_between(start, end);
+  result.stats.diagnostics = diagnostics_of(route, mesh_stats, times);
   report(options, "done", 1.0);
   return result;
 }

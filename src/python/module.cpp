@@ -110,24 +110,19 @@ py::dict stats_dict(const ember::BooleanStats& s) {
   d["output_polygons"] = s.output_polygons;
   d["dropped_slivers"] = s.dropped_slivers;
   d["solid_operands"] = s.solid_operands;
-  d["merged_triangles"] = s.merged_triangles;
-  d["solid_path"] = s.solid_path;
-  d["direct_mesh"] = s.direct_mesh;
+  const auto count = [&](const char* name) { return static_cast<std::size_t>(s.diagnostic(name)); };
+  d["merged_triangles"] = count("merged_triangles");
+  d["solid_path"] = s.diagnostic("solid_path") != 0;
+  d["direct_mesh"] = s.diagnostic("direct_mesh") != 0;
   d["output_vertices"] = s.output_vertices;
-  d["tjunctions_resolved"] = s.tjunctions_resolved;
-  d["collinear_removed"] = s.collinear_removed;
-  d["fallback_regions"] = s.fallback_regions;
+  d["tjunctions_resolved"] = count("tjunctions_resolved");
+  d["collinear_removed"] = count("collinear_removed");
+  d["fallback_regions"] = count("fallback_regions");
   d["rounded_degenerate"] = s.rounded_degenerate;
   d["time_ms"] = s.time_ms;
-  for (const auto& [name, ms] : {std::pair{"setup_ms", s.setup_ms},
-                                 {"proof_ms", s.proof_ms},
-                                 {"solve_ms", s.solve_ms},
-                                 {"output_ms", s.output_ms},
-                                 {"weld_ms", s.weld_ms},
-                                 {"tjunction_ms", s.tjunction_ms},
-                                 {"regions_ms", s.regions_ms},
-                                 {"triangulate_ms", s.triangulate_ms}})
-    d[name] = ms;
+  for (const char* name :
+       {"setup_ms", "proof_ms", "solve_ms", "output_ms", "weld_ms", "tjunction_ms", "regions_ms", "triangulate_ms"})
+    d[name] = s.diagnostic(name);
   d["threads"] = s.threads;
   return d;
 }

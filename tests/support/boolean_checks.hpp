@@ -21,7 +21,7 @@ namespace ember::test {
 inline void expect_watertight_if_closed(std::span<const Mesh> ops, const BooleanOptions& opt, const BooleanResult& r) {
   if (opt.output != BooleanOptions::Output::Triangles) return;
   for (std::size_t f = 0; f < r.mesh.face_count(); ++f) ASSERT_EQ(r.mesh.face_size(f), 3u) << "face " << f;
-  EXPECT_EQ(r.stats.fallback_regions, 0u);
+  EXPECT_EQ(r.stats.diagnostic("fallback_regions"), 0u);
   for (const Mesh& m : ops)
     if (unbalanced_edges(m) != 0) return;
   EXPECT_EQ(unbalanced_edges(r.mesh), 0u) << "closed operands must give a closed, consistently oriented result";
@@ -60,11 +60,11 @@ inline BooleanResult run_checked(std::span<const Mesh> ops, Operation op, const 
   expect_watertight_if_closed(ops, opt, r);
   // All operands solid: the solid path solved it; the subdivision must give
   // the same surface (its coplanar regions may be triangulated otherwise).
-  if (r.stats.solid_path) {
+  if (r.stats.diagnostic("solid_path") != 0) {
     BooleanOptions subdivided = opt;
-    subdivided.solid_path = false;
+    subdivided.route = BooleanOptions::Route::General;
     const BooleanResult s = boolean(ops, op, subdivided);
-    EXPECT_FALSE(s.stats.solid_path);
+    EXPECT_FALSE(s.stats.diagnostic("solid_path") != 0);
     EXPECT_TRUE(close_rel(volume(r.mesh), volume(s.mesh), 1e-9, 1e-12))
         << "the solid path changed the volume: " << volume(r.mesh) << " vs subdivided " << volume(s.mesh);
     EXPECT_TRUE(close_rel(surface_area(r.mesh), surface_area(s.mesh), 1e-9, 1e-12))

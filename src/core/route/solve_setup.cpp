@@ -40,7 +40,7 @@ std::unique_ptr<SolveSetup> set_up_solve(PreparedInput& input, Operation op, con
   for (std::size_t i = 0; i < options.solid.size(); ++i) ctx.solid[i] |= options.solid[i] ? 1 : 0;
   ctx.closed.resize(operands);
   for (std::size_t o = 0; o < operands; ++o) ctx.closed[o] = input.open_edges[o] == 0 || ctx.solid[o];
-  bool may_all_be_solid = options.solid_path;
+  bool may_all_be_solid = options.route == BooleanOptions::Route::Automatic;
   for (std::size_t o = 0; o < operands; ++o)
     may_all_be_solid &= ctx.solid[o] || (options.detect_solid && input.open_edges[o] == 0);
   if (may_all_be_solid) s->trees = build_operand_trees(input.triangles.operand_begin, input.triangles.grid.corners);

@@ -206,6 +206,33 @@ TEST(BooleanApi, StatsCountInputTriangles) {
   EXPECT_GE(r.stats.threads, 1);
 }
 
+// The figures of how the run went sit in a list looked up by name; the CLI's
+// --stats prints them in this order.
+TEST(BooleanApi, DiagnosticsNameTheRouteAndThePhases) {
+  const Mesh a = box({0, 0, 0}, {2, 2, 2}), b = box({1, 1, 1}, {3, 3, 3});
+  const BooleanResult r = boolean({a, b}, Op::Union);
+  std::vector<std::string> names;
+  for (const Diagnostic& d : r.stats.diagnostics) names.push_back(d.name);
+  const std::vector<std::string> expected{"merged_triangles",  "solid_path", "direct_mesh",      "tjunctions_resolved",
+                                          "collinear_removed", "regions",    "fallback_regions", "setup_ms",
+                                          "proof_ms",          "solve_ms",   "output_ms",        "weld_ms",
+                                          "tjunction_ms",      "regions_ms", "triangulate_ms"};
+  EXPECT_EQ(names, expected);
+  EXPECT_EQ(r.stats.diagnostic("solid_path"), 1.0);  // two boxes are proven solid
+  EXPECT_EQ(r.stats.diagnostic("no such figure"), 0.0);
+  double phases = 0;
+  for (const char* p : {"setup_ms", "proof_ms", "solve_ms", "output_ms"}) {
+    EXPECT_GE(r.stats.diagnostic(p), 0.0) << p;
+    phases += r.stats.diagnostic(p);
+  }
+  EXPECT_LE(phases, r.stats.time_ms * 1.0001 + 1e-6);
+  BooleanOptions general;
+  general.route = BooleanOptions::Route::General;
+  const BooleanResult g = boolean({a, b}, Op::Union, general);
+  EXPECT_EQ(g.stats.diagnostic("solid_path"), 0.0);
+  EXPECT_EQ(g.stats.output_polygons, r.stats.output_polygons);
+}
+
 TEST(BooleanApi, ResultIndependentOfThreadCount) {
   auto [xs, ys] = beams(6);
   std::vector<std::vector<Mesh>> cases{{xs, ys},

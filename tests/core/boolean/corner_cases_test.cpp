@@ -117,7 +117,7 @@ TEST(CornerCases, EdgeOnFaceAndVertexOnEdgeContacts) {
   // whose triangulation draws its diagonal through that very point: the apex
   // is inserted into the diagonal (run_checked finds no vertex inside an edge).
   auto u = run_checked(ops, Op::Union);
-  EXPECT_GE(u.stats.tjunctions_resolved, 1u);
+  EXPECT_GE(u.stats.diagnostic("tjunctions_resolved"), 1u);
   EXPECT_DOUBLE_EQ(volume(u.mesh), 32.0 + 8.0 + 4.0 / 3.0);
   EXPECT_DOUBLE_EQ(volume(ops[2]), 4.0 / 3.0);
   EXPECT_TRUE(run_checked(ops, Op::Intersection).mesh.empty());

@@ -43,22 +43,22 @@ TEST(EarlyOut, TrianglesTheSubdivisionCutComeBackWhole) {
       snapped({tessellated_box({-1, -1, -1}, {1, 1, 1}, 12), icosphere({0.1, -0.05, 0.02}, 0.5, 3)});
   BooleanOptions polygons;
   polygons.output = BooleanOptions::Output::Polygons;
-  polygons.solid_path = false;
+  polygons.route = BooleanOptions::Route::General;
   const BooleanResult uni = run_checked(ops, Op::Union, polygons);
-  EXPECT_GT(uni.stats.merged_triangles, 0u) << "the subdivision should have cut some box triangles";
+  EXPECT_GT(uni.stats.diagnostic("merged_triangles"), 0u) << "the subdivision should have cut some box triangles";
   EXPECT_EQ(uni.mesh.face_count(), ops[0].face_count());
   const BooleanResult inter = run_checked(ops, Op::Intersection, polygons);
   EXPECT_EQ(inter.mesh.face_count(), ops[1].face_count());
   BooleanOptions subdivided;
-  subdivided.solid_path = false;
+  subdivided.route = BooleanOptions::Route::General;
   const BooleanResult mesh = run_checked(ops, Op::Union, subdivided);
-  EXPECT_EQ(mesh.stats.merged_triangles, uni.stats.merged_triangles);
+  EXPECT_EQ(mesh.stats.diagnostic("merged_triangles"), uni.stats.diagnostic("merged_triangles"));
   EXPECT_TRUE(close_rel(volume(mesh.mesh), volume(ops[0]), 1e-12));
-  polygons.solid_path = true;
+  polygons.route = BooleanOptions::Route::Automatic;
   const BooleanResult direct = run_checked(ops, Op::Union, polygons);
-  EXPECT_TRUE(direct.stats.solid_path);
+  EXPECT_TRUE(direct.stats.diagnostic("solid_path") != 0);
   EXPECT_EQ(direct.mesh.face_count(), ops[0].face_count());
-  EXPECT_EQ(direct.stats.merged_triangles, 0u);
+  EXPECT_EQ(direct.stats.diagnostic("merged_triangles"), 0u);
 }
 
 TEST(EarlyOut, PerOperandSolidFlags) {

@@ -61,7 +61,7 @@ TEST(TjunctionSearch, OtherOperandsApexInsideAWholeSolidEdgeIsInserted) {
   for (const Operation op : {Operation::Union, Operation::Xor}) {
     const BooleanResult r = run_checked(ops, op);
     EXPECT_EQ(r.stats.solid_operands, 2u);
-    EXPECT_GE(r.stats.tjunctions_resolved, 1u);
+    EXPECT_GE(r.stats.diagnostic("tjunctions_resolved"), 1u);
     EXPECT_DOUBLE_EQ(volume(r.mesh), 32.0 + volume(ops[1]));
   }
 }

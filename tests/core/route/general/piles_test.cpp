@@ -75,7 +75,7 @@ TEST(Piles, CrowdedSolidRodsTakeTheSolidPathAtEveryThreadCount) {
     opt.threads = threads;
     const BooleanResult r = boolean(rods, Operation::Union, opt);
     EXPECT_EQ(r.stats.solid_operands, 2u);
-    EXPECT_TRUE(r.stats.solid_path);
+    EXPECT_TRUE(r.stats.diagnostic("solid_path") != 0);
     EXPECT_TRUE(r.warnings.empty());
     expect_same_as_first(first, r.mesh, threads);
   }
@@ -93,7 +93,7 @@ TEST(Piles, CrowdedSolidRodsTakeTheSolidPathAtEveryThreadCount) {
 TEST(Piles, GeneralPathRodsAgreeWithTheSolidPath) {
   const std::vector<Mesh> rods{diagonal_prism(200, 40, 0, 0), diagonal_prism(200, 40, M_PI / 200, 0.5)};
   const BooleanResult solid = run_checked(rods, Operation::Union);
-  ASSERT_TRUE(solid.stats.solid_path);
+  ASSERT_TRUE(solid.stats.diagnostic("solid_path") != 0);
   EXPECT_NEAR(volume(solid.mesh), 40.5 * 200 * std::sin(2 * M_PI / 200) / 2, 1.0);
   std::optional<Mesh> first;
   for (const int threads : {1, 2}) {
@@ -101,7 +101,7 @@ TEST(Piles, GeneralPathRodsAgreeWithTheSolidPath) {
     opt.threads = threads;
     opt.detect_solid = false;
     const BooleanResult r = run_checked(rods, Operation::Union, opt);
-    EXPECT_FALSE(r.stats.solid_path);
+    EXPECT_FALSE(r.stats.diagnostic("solid_path") != 0);
     EXPECT_TRUE(close_rel(volume(r.mesh), volume(solid.mesh), 1e-9, 1e-12)) << volume(r.mesh);
     EXPECT_TRUE(close_rel(surface_area(r.mesh), surface_area(solid.mesh), 1e-9, 1e-12)) << surface_area(r.mesh);
     expect_same_as_first(first, r.mesh, threads);

@@ -16,19 +16,19 @@ using Op = Operation;
 TEST(SolidPath, RunsExactlyWhenEveryOperandIsSolid) {
   const std::vector<Mesh> ops =
       snapped({icosphere({0, 0, 0}, 1.0, 3), rotate(torus({0.4, 0.1, 0.0}, 0.9, 0.3, 40, 16), random_rotation(5))});
-  EXPECT_TRUE(run_checked(ops, Op::Union).stats.solid_path);
+  EXPECT_TRUE(run_checked(ops, Op::Union).stats.diagnostic("solid_path") != 0);
   BooleanOptions off;
-  off.solid_path = false;
-  EXPECT_FALSE(run_checked(ops, Op::Union, off).stats.solid_path);
+  off.route = BooleanOptions::Route::General;
+  EXPECT_FALSE(run_checked(ops, Op::Union, off).stats.diagnostic("solid_path") != 0);
   BooleanOptions general;  // no proof, no promise: nothing is solid
   general.detect_solid = false;
-  EXPECT_FALSE(run_checked(ops, Op::Union, general).stats.solid_path);
+  EXPECT_FALSE(run_checked(ops, Op::Union, general).stats.diagnostic("solid_path") != 0);
   // One operand not solid (two overlapping balls): the subdivision solves.
   const std::vector<Mesh> mixed = snapped(
       {merge({icosphere({0, 0, 0}, 1.0, 2), icosphere({0.5, 0, 0}, 1.0, 2)}), box({-0.2, -0.2, -2}, {0.3, 0.3, 2})});
   const BooleanResult r = run_checked(mixed, Op::Union);
   EXPECT_EQ(r.stats.solid_operands, 1u);
-  EXPECT_FALSE(r.stats.solid_path);
+  EXPECT_FALSE(r.stats.diagnostic("solid_path") != 0);
 }
 
 TEST(SolidPath, AFaceUnderManySliversIsCutInParallelAndClassifiedAcrossItsCuts) {
@@ -49,7 +49,7 @@ TEST(SolidPath, AFaceUnderManySliversIsCutInParallelAndClassifiedAcrossItsCuts) 
     BooleanOptions one;
     one.threads = 1;
     const BooleanResult r = run_checked(ops, op, one);
-    EXPECT_TRUE(r.stats.solid_path);
+    EXPECT_TRUE(r.stats.diagnostic("solid_path") != 0);
     EXPECT_GT(r.mesh.face_count(), 600u);  // the top face in ~300 strips per triangle
     for (const int threads : {2, 4}) {
       BooleanOptions many;
@@ -72,7 +72,7 @@ TEST(SolidPath, UntouchedComponentsAreClassifiedWhole) {
   const BooleanResult inter = run_checked(ops, Op::Intersection);
   const BooleanResult diff = run_checked(ops, Op::Difference);
   const BooleanResult uni = run_checked(ops, Op::Union);
-  EXPECT_TRUE(inter.stats.solid_path);
+  EXPECT_TRUE(inter.stats.diagnostic("solid_path") != 0);
   // The inner ball and part of the crossing one are inside, the rest outside.
   EXPECT_GT(volume(inter.mesh), inner + 0.3 * crossing);
   EXPECT_LT(volume(inter.mesh), inner + 0.7 * crossing);
@@ -97,7 +97,7 @@ TEST(SolidPath, CoplanarAndTouchingOperands) {
   for (const Case& c : cases) {
     const std::vector<Mesh> ops = snapped({a, c.b});
     const BooleanResult u = run_checked(ops, Op::Union);
-    EXPECT_TRUE(u.stats.solid_path);
+    EXPECT_TRUE(u.stats.diagnostic("solid_path") != 0);
     EXPECT_TRUE(close_rel(volume(u.mesh), c.union_volume, 1e-12, 1e-12)) << volume(u.mesh);
     const BooleanResult i = run_checked(ops, Op::Intersection);
     EXPECT_TRUE(close_rel(volume(i.mesh), c.intersection_volume, 1e-12, 1e-12)) << volume(i.mesh);
@@ -115,11 +115,11 @@ TEST(SolidPath, ManyOperandsAndAtLeastK) {
   const std::vector<Mesh> ops = snapped(balls);
   for (const Op op : {Op::Union, Op::Intersection, Op::Xor}) {
     const BooleanResult r = run_checked(ops, op);
-    EXPECT_TRUE(r.stats.solid_path) << int(op);
+    EXPECT_TRUE(r.stats.diagnostic("solid_path") != 0) << int(op);
     EXPECT_EQ(membership_check(ops, op, r.mesh, 300, 11).mismatches, 0) << int(op);
   }
   const BooleanResult lenses = run_checked(ops, Op::AtLeastK, with_min_k(2));
-  EXPECT_TRUE(lenses.stats.solid_path);
+  EXPECT_TRUE(lenses.stats.diagnostic("solid_path") != 0);
   EXPECT_EQ(membership_check(ops, Op::AtLeastK, lenses.mesh, 300, 13, 2).mismatches, 0);
 }
 
@@ -141,13 +141,14 @@ TEST(SolidPath, StartedBeforeTheProofItIsTheSameBooleanAtEveryThreadCount) {
       BooleanOptions one;
       one.threads = 1;
       const BooleanResult r = boolean(ops, op, one);
-      EXPECT_EQ(r.stats.solid_path, cases[c].second) << c;
+      EXPECT_EQ(r.stats.diagnostic("solid_path") != 0, cases[c].second) << c;
       EXPECT_GT(r.mesh.face_count(), 0u) << c;
       for (const int threads : {2, 4}) {
         BooleanOptions many;
         many.threads = threads;
         const BooleanResult m = boolean(ops, op, many);
-        EXPECT_EQ(m.stats.solid_path, r.stats.solid_path) << c << ", " << threads << " threads";
+        EXPECT_EQ(m.stats.diagnostic("solid_path"), r.stats.diagnostic("solid_path"))
+            << c << ", " << threads << " threads";
         EXPECT_EQ(m.mesh.vertices, r.mesh.vertices) << c << ", " << threads << " threads";
         EXPECT_EQ(m.mesh.indices, r.mesh.indices) << c << ", " << threads << " threads";
         EXPECT_EQ(m.warnings, r.warnings) << c << ", " << threads << " threads";
