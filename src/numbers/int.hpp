@@ -339,7 +339,7 @@ constexpr Int<A + B> operator*(const Int<A>& a, const Int<B>& b) {
   } else {
     // Both factors of two or more limbs. (A branch-free variant, correcting an
     // unsigned product of the two's-complement limbs by masked subtractions of the
-    // other operand, measured 10-40% slower for Int<53>*Int<188>, Int<79>*Int<162>
+    // other operand, is slower for Int<53>*Int<188>, Int<79>*Int<162>
     // and the classify dot product (faster only for Int<106>*Int<79>): its borrow
     // chains serialize, these sign branches are cheap. The one-limb case above
     // needs no correction: its factor's sign rides in the signed products.)

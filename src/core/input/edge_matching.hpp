@@ -57,9 +57,9 @@ void sort_by_hi(It first, It last) {
 /// Calls f(uses) once per undirected edge with the span of its uses, ordered
 /// by triangle. Edges of collapsed corners (equal ids) are skipped. Linear: a
 /// two-level counting sort by the lower id, then tiny per-vertex sorts, every
-/// pass parallel over fixed blocks (a serial counting sort was half of the
-/// 1.08M-triangle union's edge matching, and all of it at 16 threads; atomic
-/// counters instead cost more than they saved at 2 threads):
+/// pass parallel over fixed blocks (a serial counting sort would dominate
+/// the edge matching at any thread count; atomic counters instead cost more
+/// than they save at few threads):
 ///  1. each block of triangles counts its uses per bucket of kBucket lower ids;
 ///  2. each block writes its uses into its own slots of each bucket (bucket
 ///     by bucket, blocks in order: the result does not depend on the schedule);

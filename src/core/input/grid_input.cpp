@@ -87,7 +87,7 @@ int rounding_change_reference(const Vec3d& a, const Vec3d& b, const Vec3d& c, co
 
 int rounding_change(const Vec3d& a, const Vec3d& b, const Vec3d& c, const std::array<std::int64_t, 3>& g) {
   // A long double per term is x87 code: the filter decides almost every
-  // triangle in double (the audit was ~2% of a small Boolean's time).
+  // triangle in double (the audit runs on every input triangle).
   if (const std::optional<int> r = rounding_change_filtered(a, b, c, g)) return *r;
   return rounding_change_reference(a, b, c, g);
 }
@@ -228,8 +228,8 @@ GridVertices quantize_used(const Mesh& m, const Quantizer& q, std::span<const st
 /// Returns the id count. The order: a stable radix sort by x (sort_pairs;
 /// the used vertices come in index order), then each run of equal x sorted
 /// by (y, z, index) (sort_equal_key_runs). Runs are mostly single vertices,
-/// so this is three radix passes where a second sort by (y, z) took five
-/// more (a comparison sort of the tuples was ~2% of a large Boolean's time).
+/// so this is three radix passes where a second sort by (y, z) would take
+/// five more (and a comparison sort of the tuples many steps per vertex).
 std::size_t weld_grid_vertices(const GridVertices& g, FillVector<std::uint32_t>& id) {
   // |coordinate| <= kLimit < 2^25: offset by 2^25, each fits 27 bits.
   static_assert(Quantizer::kLimit < (std::int64_t{1} << 25), "grid coordinates + 2^25 fit 27 bits");
@@ -246,8 +246,8 @@ std::size_t weld_grid_vertices(const GridVertices& g, FillVector<std::uint32_t>&
         return p.y != q.y ? p.y < q.y : (p.z != q.z ? p.z < q.z : a.second < b.second);
       });
   // A new id wherever the position changes along that order: a parallel
-  // prefix sum (the serial numbering loop was 12-15 ms of each operand's
-  // set-up at 16 threads on the 1.08M-triangle union).
+  // prefix sum (a serial numbering loop over every vertex would be a
+  // stretch of each operand's set-up in which the other threads wait).
   id.resize(g.pos.size());  // written at every used vertex below (the others are never read)
   const std::uint32_t last = tbb::parallel_scan(
       tbb::blocked_range<std::size_t>(0, n, 4096), std::uint32_t{0},

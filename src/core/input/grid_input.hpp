@@ -63,8 +63,8 @@ Quantizer fit_used_vertices(std::span<const Mesh> operands, const UsedVertices& 
 /// Below this many triangles in all, the set-up runs the operands' chains
 /// (and the audit beside the edge matching) side by side: each chain is
 /// serial steps and short loops that cannot fill the threads alone. Above
-/// it their loops do (side by side gained no time on the 1.08M-triangle
-/// union), and one chain at a time keeps the transient buffers to one
+/// it their loops do (side by side gains no time), and one chain at a time
+/// keeps the transient buffers to one
 /// operand's, allocated by the calling thread.
 inline constexpr std::size_t kSideBySideTriangles = std::size_t{1} << 17;
 inline bool side_by_side(const GridInput& gi) { return gi.triangles.size() < kSideBySideTriangles; }

@@ -18,8 +18,8 @@ struct GridTriangles {
   /// grid_normal of each triangle's corners (non-zero: degenerate
   /// triangles are not kept), stored for the hot loops that need it (the
   /// proof's contact tests, the partner search, the pair chords): 24 bytes
-  /// per triangle against recomputing it in each (~6 M of the bunny pair's
-  /// 250 M instructions).
+  /// per triangle, computed once here, where each of those loops would
+  /// otherwise recompute it for every pair it tests.
   FillVector<std::array<std::int64_t, 3>> normals;
   /// Welded vertex ids (edge_matching.hpp): within one operand, equal ids iff equal positions.
   FillVector<std::array<std::uint32_t, 3>> vertex_ids;

@@ -56,7 +56,7 @@ void approx_bounds(const Polygon& poly, std::array<double, 3>& lo, std::array<do
 SoupPolygon unbuilt_triangle(const std::array<IntPoint, 3>& c, std::uint32_t id, std::uint32_t operand);
 
 /// Builds an unbuilt triangle's edges and vertices (make_triangle of its
-/// corners: the same polygon the soup used to start from). No-op otherwise.
+/// corners: the same polygon a built entry holds). No-op otherwise.
 void materialize(SoupPolygon& p);
 
 /// line_clearly_misses for a soup polygon, built or not (an unbuilt
@@ -74,8 +74,8 @@ struct SoupApprox {
   /// Per vertex: 1 if it is a grid point (stored_grid_point), whose
   /// approximation is then its exact coordinates (|x| <= 2^25): the exact
   /// tests of gather's undecided vertices (most of them shared with the
-  /// polygon being cut) read it instead of the vertex, whose 120 bytes were
-  /// a cache miss each (a quarter of gather's time in the sliver pile).
+  /// polygon being cut) read it instead of the vertex, whose 120 bytes would
+  /// be a cache miss each, in gather's hottest loop on a pile of slivers.
   std::vector<std::uint8_t> grid;
   std::vector<std::uint32_t> begin;                     ///< polygon i: verts[begin[i] .. begin[i+1])
   std::vector<std::array<std::int8_t, 3>> normal_sign;  ///< sign of each support normal coordinate

@@ -1,10 +1,10 @@
 #pragma once
 // The vertices of a large loop in a uniform grid over the two axes its box
 // spans most, for the ear clipper's emptiness test (region_triangulation.cpp): every
-// ear test had scanned the whole loop, so a region of n vertices cost
-// O(n^2) box tests, most of EMBER case 582's direct route (faces of its
-// second operand's large triangles, cut by hundreds of the first operand's
-// slivers: 435 M of its 1,020 M instructions). The grid only narrows which
+// ear test scanning the whole loop would make a region of n vertices cost
+// O(n^2) box tests, which dominates the direct route where large triangles
+// of one operand are cut by hundreds of the other operand's slivers. The
+// grid only narrows which
 // vertices are tested: the caller applies the same tests to each, so the
 // ears, and the triangles, are the same.
 #include <algorithm>
@@ -54,8 +54,8 @@ class LoopGrid {
     }
   }
 
-  /// Takes point i out of its cell (the ear clipper's clipped vertices:
-  /// the grid had kept offering them, ~35 M of case 582's instructions).
+  /// Takes point i out of its cell (the ear clipper's clipped vertices,
+  /// which the grid would otherwise keep offering to every later query).
   /// The last point of the cell takes its slot; `any` does not depend on
   /// the order in which a cell offers its points.
   void remove(std::uint32_t i) {

@@ -92,8 +92,8 @@ void write_indexed_mesh(std::span<const std::array<std::uint32_t, 3>> tris, std:
       [](std::uint32_t a, std::uint32_t b) { return a + b; });
   const auto remap = [&](std::uint32_t v) { return rank[first_use[v]]; };
   // The mesh's arrays are plain vectors: their resize value-initializes
-  // serially, so their pages are faulted in first, in parallel (on the
-  // 1.08M-triangle union the three were ~20 MB).
+  // serially, so their pages are faulted in first, in parallel (on a large
+  // output the three are tens of megabytes).
   reserve_touched(mesh.vertices, vertices);
   reserve_touched(mesh.indices, 3 * total);
   reserve_touched(mesh.face_offsets, total + 1);

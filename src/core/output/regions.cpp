@@ -251,8 +251,8 @@ void piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids, s
 Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles, const OutputVertices& verts,
                       const std::vector<char>& skip) {
   // Only kept polygons' keys are written and read. (Value-initialized, the
-  // 48-byte keys of the 1.08M-triangle union's 591k polygons were a serial
-  // 14 ms of page faults.)
+  // 48-byte keys of a large output would take their page faults in one
+  // serial pass.)
   FillVector<PlaneKey> keys(polys.size());
   tbb::parallel_for(std::size_t{0}, polys.size(), [&](std::size_t p) {
     if (!skip[p]) keys[p] = canonical(support_of(polys[p]), polys[p].flip);

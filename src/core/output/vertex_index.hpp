@@ -33,9 +33,9 @@ namespace ember::core {
 /// subnormals or overflow could spoil the bounds) it rules nothing out.
 ///
 /// SegmentFilter(ra, rb).clearly_off(rv) computes what depends on ra and rb
-/// alone once for many candidates rv (the T-junction search tests ~200 per
-/// edge in the sliver pile; recomputing it for each was half of the filter's
-/// cost); clearly_off_segment(ra, rb, rv) is the one-off form.
+/// alone once for many candidates rv (the T-junction search tests hundreds
+/// per edge in a pile of slivers, and that part is a large share of the
+/// filter's cost); clearly_off_segment(ra, rb, rv) is the one-off form.
 class SegmentFilter {
  public:
   SegmentFilter(const Vec3d& ra, const Vec3d& rb)
@@ -134,18 +134,18 @@ class SegmentTube {
 /// Cells one mean edge long can hold whole clusters of vertices: where the
 /// edges are long slivers (thousands of units long, 1e-3 wide), a cell holds
 /// the thousands of vertices across a rod's end, and every edge passing it
-/// tested them all (the sliver pile: 5,500 members per query). A cell with
+/// would test them all. A cell with
 /// more than kTreeMembers members therefore keeps them in a small kd-tree,
 /// and a segment query descends only into the nodes whose boxes the segment
 /// passes (SegmentTube), testing the classes member by member there.
 ///
 /// Cells and trees are laid out in the principal frame of the members'
 /// positions (principal_frame.hpp), not along the axes: a pile of diagonal
-/// slivers (the sliver pile's rods, 9,000-17,000 units long and 2-500 wide)
-/// puts the whole section of a rod into the axis-aligned box of every stretch
-/// of a strip's edge, and the T-junction search filtered ~2,300 vertices per
-/// long edge (11.4M in all, of which 1,629 passed the filter); in the frame
-/// the boxes of such a stretch are thin across the rod.
+/// slivers (rods thousands of units long and far narrower) puts the whole
+/// section of a rod into the axis-aligned box of every stretch of a strip's
+/// edge, so the T-junction search would filter thousands of vertices per
+/// long edge, nearly all of which the filter rejects; in the frame the boxes
+/// of such a stretch are thin across the rod.
 ///
 /// Why the frame is sound: the frame R (orthonormal rows, |R_kj| <= 1) is
 /// taken as an exact linear map. Let M be the larger |coordinate| of the
@@ -359,8 +359,7 @@ class VertexIndex {
   };
   static constexpr std::uint32_t kTreeMembers = 64;  ///< cells with more members get a tree
   /// Members per leaf, at most: each one a leaf holds is box-tested and
-  /// filtered. The sliver pile's whole run at 8 / 4 / 2: 26.99 / 26.73 /
-  /// 26.62 G instructions (callgrind, 1 thread).
+  /// filtered, so small leaves pay; smaller ones than 4 gain little more.
   static constexpr std::uint32_t kTreeLeaf = 4;
   static constexpr std::uint32_t kNoTree = UINT32_MAX;
 

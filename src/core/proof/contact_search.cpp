@@ -114,7 +114,7 @@ class Search {
     if (done()) return;
     if (!spawns(depth)) {
       // Each combination compiled apart: the frame's test costs nothing where
-      // an operand has none (bunny pair: 0.6 M instructions as a branch).
+      // an operand has none (as a branch it would run on every leaf pair).
 #if EMBER_WIDE_LANES
       if (wide_)
         return frame_ ? subtree_cross_wide<true>(a, b, depth, examined)
@@ -207,23 +207,23 @@ class Search {
       const ContactTriangle& ti = tris_[tree().item(i)];
       unsigned candidates = tree().overlap_mask_in<Wide>(b, box) & (~0u << (from - bb));
       // Framed: first the extents along the operand's slivers (sliver_frame),
-      // which leave few of a sliver pile's box pairs (case 582: 1 in 30),
-      // before the vertex ids are compared.
+      // which leave few of a sliver pile's box pairs, before the vertex ids
+      // are compared.
       if constexpr (Framed)
         if (candidates != 0) candidates &= ~frame_->apart_mask_in<Wide>(b, frame_->extent(i));
       if (candidates == 0) continue;
       const LeafVertexIds::Masks shared = ids_->shared_masks_in<Wide>(b, ti.id);
       if (ti.embedded == 7) candidates &= ~shared.neighbours;
       // Boxes that meet, diagonal extents that do not: long slivers across
-      // the axes (EMBER case 582, pair020: 60-70% of the pairs the boxes
-      // leave), dismissed for a fraction of the exact test's cost.
+      // the axes (most of the pairs the boxes leave there), dismissed for a
+      // fraction of the exact test's cost.
       if (candidates != 0) candidates &= ~diagonals_->apart_mask_in<Wide>(b, diagonals_->extent(i));
       if (candidates == 0) continue;
       for (unsigned m = candidates; m != 0; m &= m - 1) {
         const int slot = std::countr_zero(m);
         const ContactTriangle& tj = tris_[tree().item(bb + static_cast<std::size_t>(slot))];
-        // Most pairs left share no vertex (pair019, EMBER case 84: all but
-        // 0.1%): their test is apart_triangles_meet, without the shared
+        // Most pairs left share no vertex (nearly all, on most inputs): their
+        // test is apart_triangles_meet, without the shared
         // vertex bookkeeping of triangles_meet_improperly (a third of its cost).
         if (!(shared.sharing >> slot & 1u) ? !apart_triangles_meet(ti.p(), ti.n, tj.p(), tj.n)
                                            : !triangles_meet_improperly(ti, tj))
@@ -268,7 +268,7 @@ class Search {
 }  // namespace
 
 // An ordinary mesh has a few box pairs per triangle and none of them apart in
-// the frame (bunny pair, pair001): its sample rejects the frame.
+// the frame: its sample rejects the frame.
 std::optional<FrameAxes> sliver_frame(std::span<const ContactTriangle> tris, const TriangleTree& tree) {
   const auto corners = [&](std::size_t i) -> const std::array<IntPoint, 3>& { return tris[i].p(); };
   FrameAxes frame;

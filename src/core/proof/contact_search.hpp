@@ -5,10 +5,10 @@
 // A bounding-volume hierarchy over the triangles in Hilbert curve order, traversed
 // against itself: every triangle sits in exactly one leaf, so every pair of
 // overlapping boxes is met exactly once, and a pair of subtrees whose boxes
-// are apart is dismissed in one test. The kd-split it replaces sent a
-// triangle to every cell its box reached and dismissed the repeats by an
-// ownership rule only after the box test: on EMBER case 16 it examined 7x
-// more box pairs than it tested, and that loop was half of the proof.
+// are apart is dismissed in one test. A kd-split, which sends a triangle to
+// every cell its box reaches and dismisses the repeats by an ownership rule
+// only after the box test, examines several times more box pairs than it
+// tests on a pile of slivers, in the proof's hottest loop.
 #include <cstddef>
 #include <optional>
 #include <span>
@@ -37,8 +37,8 @@ struct ContactSearchResult {
 /// per triangle were examined, or, with a pair found, once about
 /// kCountingPerTriangle were (`complete` tells). Each unordered pair is
 /// tested at most once, so a search that examines fewer than
-/// kCountingPerTriangle box pairs per triangle in all (every ordinary mesh
-/// measured: 25-320) and ends below max_pairs counts exactly, whatever the
+/// kCountingPerTriangle box pairs per triangle in all (as ordinary meshes
+/// do) and ends below max_pairs counts exactly, whatever the
 /// thread count. Beyond that, whether and how many pairs were found before
 /// the search stopped depends on the schedule; every answer with a pair
 /// means "not solid" and one without gives no verdict, so only the report
@@ -62,18 +62,18 @@ std::optional<FrameAxes> sliver_frame(std::span<const ContactTriangle> tris, con
 /// The work budget: box pairs examined per triangle (plus a fixed allowance
 /// for small inputs) before the search gives up; the pairs of tree nodes
 /// whose frame extents are apart (sliver_frame) are not examined and not
-/// counted. Ordinary meshes examine 25-320 per triangle; EMBER case 582's
-/// first operand, solid, 1,126 without its frame, 90 with it; the sliver
-/// pile's left rod, which self-intersects, ~2,900 without, ~1,700 with
-/// (docs/design.md, "Solid proof"). A proof that gives up sends the operand
-/// down the general path, which costs case 582 four times the Boolean's time.
+/// counted. The budget lies well above what ordinary meshes examine per
+/// triangle, and above what a solid operand of slivers examines without its
+/// frame, so that such an operand is not sent down the general path, which
+/// costs it several times the Boolean's time; a self-intersecting pile of
+/// slivers may pass it without its frame (docs/design.md, "Solid proof").
 inline constexpr std::size_t kBudgetPerTriangle = 2048;
 
 /// Once a pair is found the verdict is decided; the search goes on only to
 /// count (for the report), and stops counting past this many box pairs per
-/// triangle (ordinary meshes examine 25-320 in all, so their counts stay
-/// complete): the sliver pile's self-intersecting rod counted its 64 pairs
-/// to the full budget, ~300 ms of a 2 s Boolean.
+/// triangle (above what ordinary meshes examine in all, so their counts stay
+/// complete): a self-intersecting pile of slivers would otherwise count its
+/// pairs to the full budget, a large part of its Boolean's time.
 inline constexpr std::size_t kCountingPerTriangle = 512;
 
 }  // namespace ember::core

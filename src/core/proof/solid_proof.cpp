@@ -26,8 +26,8 @@ namespace ember::core {
 namespace {
 
 /// The ids of the operand's polygons, in soup order, selected in parallel
-/// (a serial scan of the 1.08M-triangle union's root soup, 86 MB, was
-/// ~20 ms of each operand's proof at any thread count).
+/// (a serial scan of a large input's root soup, tens of megabytes, would be
+/// a long stretch of each operand's proof at any thread count).
 FillVector<std::uint32_t> operand_members(const Soup& soup, std::uint32_t operand) {
   return parallel_select<std::uint32_t>(
       soup.size(), [&](std::size_t i) { return soup[i].operand == operand; },

@@ -4,8 +4,8 @@
 // step 1).
 //
 // Most pairs of triangles whose boxes overlap share a vertex (a triangle
-// meets about twelve neighbours that way), and each such pair used to get
-// the exact contact test. Instead, each vertex's star (every triangle of the
+// meets about twelve neighbours that way), and giving each such pair the
+// exact contact test would be most of the work. Instead, each vertex's star (every triangle of the
 // operand with a corner there) is certified once, in O(valence):
 //  * the triangles form one cycle t_0 .. t_{m-1} around v, t_i = (v, w_i,
 //    w_{i+1}) counter-clockwise (indices mod m), consecutive ones sharing the

@@ -22,12 +22,12 @@ namespace ember::core {
 /// the extents, a mask per leaf pair) against ~60 per exact test saved.
 inline constexpr double kFramePairsPerTriangle = 4;
 /// Triangles sampled for that estimate (evenly spaced): one in 64, from 8
-/// to 16. Each costs a tree query and its box pairs' extents, ~15k
-/// instructions on the bunny pair and pair015 (the tree's upper nodes
-/// overlap). The sliver operands dismiss hundreds of pairs per triangle:
-/// any sample tells. (Comparing each sample only with its 32 neighbours on
-/// either side in the tree's order instead cost as much and missed
-/// pair018's operand.)
+/// to 16. Each costs a tree query and its box pairs' extents, which is
+/// small but not negligible (the tree's upper nodes overlap), hence the
+/// cap. Sliver operands dismiss hundreds of pairs per triangle: any sample
+/// tells. (Comparing each sample only with its 32 neighbours on either side
+/// in the tree's order instead costs as much and can miss an operand that
+/// the frame would help.)
 inline constexpr std::size_t kFrameSampleMin = 8, kFrameSampleMax = 16;
 /// Corners the frame is computed from (evenly spaced): enough to find the
 /// directions.

@@ -1,9 +1,9 @@
 #pragma once
 // The diagonal extents (solid_proof.hpp's DiagonalExtent) of the triangles
 // in each leaf of a TriangleTree (leaf_extents.hpp), for the broad phases'
-// leaf pairs: the solid proof's contact search (contact_search.cpp; EMBER
-// case 84: 16M pairs, a third of its proof) and the solid path's partner
-// search (solid_route.cpp).
+// leaf pairs: the solid proof's contact search (contact_search.cpp; on a
+// pile of slivers its pairs are a large part of the proof) and the solid
+// path's partner search (solid_route.cpp).
 #include <cstdint>
 #include <limits>
 #include <span>

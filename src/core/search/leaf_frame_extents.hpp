@@ -1,12 +1,10 @@
 #pragma once
 // The extents of the triangles in each leaf of a TriangleTree along the axes
 // of a frame (leaf_extents.hpp), for the solid proof's contact search: an
-// operand of long slivers along a direction off the axes (EMBER case 582's
-// first operand, the sliver pile's rods) has boxes and diagonal extents
-// that overlap by the hundreds per triangle, which a frame along the slivers
-// tells apart (numpy on the benchmark's operands: case 582 408 -> 11 pairs
-// per triangle left for the exact test, case 84 210 -> 15, the left rod
-// 1,743 -> 604).
+// operand of long slivers along a direction off the axes (such as a pile of
+// rods) has boxes and diagonal extents that overlap by the hundreds per
+// triangle, which a frame along the slivers tells apart, leaving a small
+// fraction of those pairs for the exact test.
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -32,7 +30,8 @@ namespace ember::core {
 /// add 2 more (cheaper than libm's floor and ceil). |projection| <= |p| <
 /// 2^26 for a unit axis: the bounds fit int32.
 /// Always inlined: the compiler's choice flips with unrelated changes to the
-/// solid path (as a call, EMBER case 16's frame samples cost 1.2 M more).
+/// solid path, and as a call it would add its overhead to every triangle of
+/// the frame samples and extents.
 [[gnu::always_inline]] inline ProjectedExtent<3> frame_extent(const std::array<IntPoint, 3>& p,
                                                               const FrameAxes& frame) {
   static_assert(kCoordLimit <= (std::int64_t{1} << 25),
@@ -71,7 +70,7 @@ class LeafFrameExtents : public LeafExtents<3> {
   /// Every triangle under tree node a is apart in the frame from every one
   /// under node b (their extents' hulls are apart along an axis): a node
   /// pair whose boxes overlap but whose slivers lie side by side across the
-  /// frame (EMBER case 582's rod) needs no visit to its leaves.
+  /// frame (a rod of slivers) needs no visit to its leaves.
   bool nodes_apart(std::size_t a, std::size_t b) const { return nodes_apart(a, *this, b); }
   /// The same for node a of this tree and node b of another's, in the same
   /// frame (the partner search's two operands).

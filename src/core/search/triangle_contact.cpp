@@ -38,8 +38,8 @@ bool strictly_one_side(const i128 (&s)[3]) {
 }
 
 /// The sides (grid_side) of b's corners against the plane of a (normal na).
-/// Always inlined: returned through memory, the 48 bytes cost the partner
-/// search ~0.6% of pair001's instructions.
+/// Always inlined: returned through memory, the 48 bytes would be stored and
+/// reloaded on every pair the partner search tests.
 struct Sides {
   i128 s[3];
 };
@@ -111,8 +111,8 @@ Straddle straddle(const int (&s)[3]) {
 /// overlap iff neither ends before the other begins, which two orientations
 /// of one vertex of each against an edge of the other decide.
 /// Not inlined, nor coplanar_meet: apart_triangles_meet's callers mostly end
-/// at its plane tests, which stay lean without them (inlined, pair019's
-/// broad phases took 3% more instructions).
+/// at its plane tests, which stay lean without them (inlined, they would
+/// bloat the broad phases' inner loops for the few pairs that reach them).
 [[gnu::noinline]] bool straddling_triangles_meet(const std::array<IntPoint, 3>& a, const std::array<IntPoint, 3>& b,
                                                  const int (&sa)[3], const int (&sb)[3]) {
   const Straddle ca = straddle(sa), cb = straddle(sb);

@@ -94,11 +94,10 @@ constexpr std::array<std::uint16_t, 24 * 64> kTwoHilbertLevels = two_hilbert_lev
 /// shift for all axes), so consecutive triangles make tight leaves and
 /// every run of leaves under a node is one connected stretch of the curve.
 /// A Morton order, which jumps between distant cells at its octant
-/// boundaries, left looser leaves and nodes: the bunny pair's partner and
-/// contact searches took 17 M more instructions in all than along this
-/// curve, against ~1.5 M for the curve's keys. 30-bit keys take the radix
-/// sort four passes; 2^30 cells stay far finer than the triangles of the
-/// largest inputs (1.2M).
+/// boundaries, makes looser leaves and nodes, which cost the partner and
+/// contact searches far more than the curve's keys cost to compute. 30-bit
+/// keys take the radix sort four passes; 2^30 cells stay far finer than the
+/// triangles of inputs of millions of triangles.
 class CurveKeys {
  public:
   explicit CurveKeys(std::span<const Box32> boxes) {

@@ -66,7 +66,7 @@ bool box_clearly_beside(const Box32& box, const IntPoint& o, const std::array<st
 /// Queries never span the whole int32 range along x. The last leaf's
 /// unused slots hold empty boxes (lo = INT32_MAX, hi = INT32_MIN), which then
 /// meet no query, so the leaf masks need no count of used slots (computing
-/// it per mask was 1.6% of the bunny pair's instructions). Grid boxes lie
+/// it per mask would add work to every leaf test). Grid boxes lie
 /// within +-2^25; enclosing_box clamps to +-kQueryLimit.
 inline constexpr std::int32_t kQueryLimit = std::int32_t{1} << 30;
 static_assert(kCoordLimit < kQueryLimit && kQueryLimit < std::numeric_limits<std::int32_t>::max(),

@@ -4,10 +4,9 @@
 //
 // std::vector<T>(n) value-initializes: one serial pass that zeroes every byte
 // and takes every page fault of fresh memory before the parallel fill writes
-// the same bytes again. On pair001 (71k triangles) such passes were 5% of all
-// instructions inside boolean() (callgrind counts a memset byte by byte) and,
-// at 2 threads, a serial 2-3 ms of a 60 ms Boolean. With FillVector the fill
-// is the first touch, in parallel.
+// the same bytes again: a serial pass over every large buffer, in which the
+// other threads wait. With FillVector the fill is the first touch, in
+// parallel.
 //
 // Only for implicit-lifetime element types (here: trivially copy-
 // constructible and destructible, such as IntPoint arrays and std::pair of
@@ -60,10 +59,10 @@ using FillVector = std::vector<T, NoInitAllocator<T>>;
 /// Reserves room for n elements of v and takes the page faults of the fresh
 /// storage in parallel, one write per page, before a resize that must
 /// construct its elements one by one (types that are not implicit-lifetime,
-/// such as the soup's polygons with their unique_ptr). The root soup of the
-/// 1.08M-triangle union is 86 MB: its resize was 37 ms of serial page faults,
-/// a quarter of the set-up at 16 threads; on mapped pages the construction
-/// runs at memory speed. The writes go to bytes of the allocation that no
+/// such as the soup's polygons with their unique_ptr). The root soup of a
+/// large input is tens of megabytes, whose page faults, taken serially by
+/// the resize, would be a large part of the set-up; on mapped pages the
+/// construction runs at memory speed. The writes go to bytes of the allocation that no
 /// element occupies yet (the resize then constructs over them). Address-
 /// sanitized builds skip them: a vector's unused capacity may be poisoned
 /// there (libc++, or libstdc++ with _GLIBCXX_SANITIZE_VECTOR), and the touch

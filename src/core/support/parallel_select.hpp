@@ -3,9 +3,9 @@
 // [0, n) that pass a test, in increasing index order.
 //
 // A serial push_back over every triangle or vertex of a large input is a
-// stretch in which one thread works and the others wait: each such pass was
-// 1-3 ms of the 1.08M-triangle union, where the whole Boolean should take
-// ~50 ms at 16 threads. Here both passes run over fixed blocks (count, then
+// stretch in which one thread works and the others wait, and several such
+// passes add up to a noticeable part of a Boolean that otherwise runs on
+// every thread. Here both passes run over fixed blocks (count, then
 // write at the block's offset), so the result does not depend on the
 // schedule, and the output's pages are first touched in parallel
 // (FillVector).

@@ -16,9 +16,9 @@ using FrameAxes = std::array<std::array<double, 3>, 3>;
 /// right-handed frame: the direction in which they spread most (the x axis if
 /// they do not spread), then the most among those orthogonal to it
 /// (where the points spread in only one direction, frame_along it); false
-/// only where no frame could be formed. A pile of slivers along a plane
-/// (EMBER case 84's second operand) is thin along the third axis, which an
-/// arbitrary frame around the first misses.
+/// only where no frame could be formed. A pile of slivers along a plane is
+/// thin along the third axis, which an arbitrary frame around the first
+/// misses.
 bool principal_frame(const std::vector<std::array<double, 3>>& points, FrameAxes& frame);
 
 /// A right-handed orthonormal frame whose first axis is e0 (a unit vector);

@@ -15,18 +15,18 @@ namespace {
 // 11-bit digits: 2,048 counters of 8 bytes per chunk stay in L1 during the
 // count, and a 34-bit key (an edge of 2^17 vertices) needs 4 passes. Below
 // kWideDigitsFrom pairs the 2,048 counters (filled and summed per pass) cost
-// more than the pairs: 8-bit digits, 256 counters. Measured per sort of
-// random 32-bit / edge keys at 1 thread: 1,000 pairs 6 / 8 us with 8-bit
-// digits, 9 / 12 us with 11-bit ones; 3,000 pairs 20 / 22 against 18 / 27.
+// more than the pairs: 8-bit digits, 256 counters. kWideDigitsFrom lies
+// where, on random 32-bit and edge keys, the wider digits' fewer passes
+// begin to outweigh their larger counter arrays.
 constexpr int kWideDigitBits = 11, kNarrowDigitBits = 8;
 constexpr std::size_t kWideDigitsFrom = 4096;
 constexpr std::size_t kMaxBuckets = std::size_t{1} << kWideDigitBits;
 // Fixed chunks (not the scheduler's ranges): the scatter offsets, and hence
 // the result, are the same for any thread count.
 constexpr std::size_t kChunk = std::size_t{1} << 16;
-// Below this a comparison sort is as fast and needs no second buffer. (Up
-// to 2,048 it was one: 32 us for 1,000 random pairs, whose comparisons the
-// branch predictor cannot follow, against the radix sort's 6 us.)
+// Below this a comparison sort is as fast and needs no second buffer. (Not
+// much above it: on random pairs the comparisons defeat the branch
+// predictor, and the radix sort is several times faster.)
 constexpr std::size_t kSmall = 64;
 
 template <typename Key, typename Alloc>

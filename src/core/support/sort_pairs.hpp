@@ -2,10 +2,11 @@
 // Sorting (key, index) pairs: the mesh stage groups corners by edge, the
 // proof orders triangles along a Hilbert curve, the vertex index buckets
 // positions, ... all by sorting an array of (integer key, 32-bit index)
-// pairs that was filled in index order. A comparison sort spends ~17
-// compare-and-move steps per element on 10^5 elements (6-9% of a typical
-// Boolean's instructions went into them); a stable LSD radix sort on the
-// bits in which the keys differ takes 3-6 passes of a few instructions each.
+// pairs that was filled in index order. A comparison sort spends ~log2(n)
+// compare-and-move steps per element (~17 on 10^5 elements), and these
+// sorts run in several stages of every Boolean; a stable LSD radix sort on
+// the bits in which the keys differ takes 3-6 passes of a few instructions
+// each.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>

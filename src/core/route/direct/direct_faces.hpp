@@ -65,7 +65,7 @@ struct EdgeNames {
 
 /// An end point of the chord in which meeting triangles x and y cross: where
 /// an edge of one crosses the other's interior. Its point is not stored
-/// (120 bytes; the 1.2M-triangle case has ~100k pairs): each triangle that
+/// (120 bytes per chord end, for every meeting pair): each triangle that
 /// has it computes it once (crossing_point).
 struct ChordEnd {
   CrossingName name;

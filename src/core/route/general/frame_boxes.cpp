@@ -114,16 +114,15 @@ constexpr int kMaxCells = 32;  // per axis: a pile of ~5,000 thin polygons gets 
 constexpr int kMinCells = 4;
 constexpr int kMaxSpan = 64;  // cells a polygon may cover before it counts as wide
 /// The grid is coarsened until polygons cover at most this many cells on
-/// average (wide ones counted as kMaxSpan + 1); 2, 4 and 8 measured alike on
-/// the sliver pile, 16 6% slower, no coarsening 15-20% slower.
+/// average (wide ones counted as kMaxSpan + 1): the cost is flat for small
+/// values and grows once a query marks each candidate many times.
 constexpr std::size_t kMeanSpan = 4;
 /// candidates() scans rather than asks a grid of at most this many cells
-/// per axis, where four boxes go in one compare (AVX2): in the sliver pile
-/// (all its grids 4 x 4 or 8 x 8) a query's marks and readback visited ~40%
-/// of the leaf one polygon at a time. Callgrind, 1 thread: 30.47 G with the
-/// grid, 28.08 G scanning 4 x 4 leaves, 27.80 G scanning 8 x 8 ones too
-/// (25.09 G once the scan skipped blocks: FrameBoxes::kBlock). Without AVX2
-/// the scalar scan was slower than the grid (35.48 G).
+/// per axis, where four boxes go in one compare (AVX2): in so coarse a grid
+/// a query's marks and readback visit a large part of the leaf one polygon
+/// at a time, more than the scan costs (which also skips blocks:
+/// FrameBoxes::kBlock). Without AVX2 the scalar scan is slower than the
+/// grid.
 constexpr int kScanCells = 8;
 }  // namespace
 
@@ -216,7 +215,7 @@ bool FrameBoxes::overlapping(std::size_t i, Query& query, Candidates& out) const
     }
   // The wide polygons are in no cell, and i is not wide (it would have been
   // declined above): one branch-free pass over their boxes, stored together
-  // (in the sliver pile they were a third of the leaf), marks those that
+  // (in a pile leaf they can be a large part of it), marks those that
   // meet i's.
   out.clear();
   append_meeting(

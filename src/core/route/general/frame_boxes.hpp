@@ -1,8 +1,8 @@
 #pragma once
 // Bounding boxes in a leaf's own principal frame, a filter for pile leaves.
 //
-// A pile of long slivers along a diagonal (the sliver pile: thin rods whose
-// sides are strips thousands of units long and a few grid steps wide) puts
+// A pile of long slivers along a diagonal (such as thin rods whose sides are
+// strips thousands of units long and a few grid steps wide) puts
 // thousands of strips into every axis-aligned box, and their axis-aligned
 // boxes all overlap. Seen along the pile's principal direction the strips are
 // thin: boxes in a frame whose first axis follows the pile separate them.
@@ -16,14 +16,14 @@
 // (|R_kj| <= 1); the boxes are padded by 2^-40 M. So polygons whose padded
 // boxes are apart cannot touch.
 //
-// A pile of two operands' slivers at a small angle to each other (the sliver
-// pile's twin rods, ~0.5 degrees apart) has one principal direction between
+// A pile of two operands' slivers at a small angle to each other (twin rods
+// a fraction of a degree apart) has one principal direction between
 // theirs, in which each rod's strips drift across the section by tens of
 // grid units over their length, and their boxes overlap hundreds of others.
 // Each operand's own principal frame keeps its own strips thin: two
 // polygons whose boxes are apart in any of the frames cannot touch, so the
-// operands' frames filter the leaf frame's answers (in the sliver pile's
-// largest leaves, 590-690 candidates per polygon become 240-340).
+// operands' frames filter the leaf frame's answers, removing a good part of
+// the candidates in such a pile's largest leaves.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -48,16 +48,16 @@ class FrameBoxes {
   bool empty() const { return lo_[0].empty(); }
   /// A query's answer: polygon indices, written without zero-filling first
   /// (a scan sizes the buffer for every polygon of the leaf, then keeps the
-  /// few that meet: zeroing it was 3% of the sliver pile's instructions).
+  /// few that meet: zeroing it would touch every slot for a few answers).
   using Candidates = FillVector<std::uint32_t>;
   /// A caller's memory of which polygons its current query has found: one per
   /// thread, so that the threads of a pile leaf query one FrameBoxes together.
   struct Query {
     /// One bit per polygon, all clear between queries: a query marks the
     /// members of the cells it visits (each once, however many cells hold
-    /// it) and reads them back in ascending order, clearing as it goes. A
-    /// per-polygon stamp followed by a sort of the answer cost twice as
-    /// much: the sort alone was 13% of the sliver pile's solve.
+    /// it) and reads them back in ascending order, clearing as it goes: the
+    /// answer comes out sorted, where a per-polygon stamp would need a sort
+    /// of every answer, a large part of a pile's solve.
     std::vector<std::uint64_t> marks;
   };
   /// The polygons (ascending, without i) whose boxes overlap polygon i's, from a
@@ -66,10 +66,10 @@ class FrameBoxes {
   bool overlapping(std::size_t i, Query& query, Candidates& out) const;
   /// The same answer as overlapping() by testing every polygon, for the
   /// polygons overlapping() declines: one branch-free pass over the boxes
-  /// stored axis by axis. In the sliver pile 30% of the pile leaves' gathers
-  /// were such scans, 3,500 polygons each on average; testing each polygon
-  /// in gather (its soup entry, its world box, then its frame box) made
-  /// gather 30% of the pile's time.
+  /// stored axis by axis. In a pile of slivers many of the pile leaves'
+  /// gathers are such scans, over thousands of polygons each; testing each
+  /// polygon in gather instead (its soup entry, its world box, then its
+  /// frame box) would make gather a large part of the pile's time.
   void scan(std::size_t i, Candidates& out) const;
   /// The same answer as scan(), one element at a time (any processor).
   void scan_portable(std::size_t i, Candidates& out) const;
@@ -81,7 +81,7 @@ class FrameBoxes {
   /// The answer of overlapping() or scan(), whichever is cheaper for i here:
   /// where the grid coarsened to its fewest cells and the processor scans
   /// four boxes per compare, the scan (a coarse grid's query marks and reads
-  /// back ~40% of the leaf, one polygon at a time); otherwise the grid,
+  /// back a large part of the leaf, one polygon at a time); otherwise the grid,
   /// unless it declines i.
   void candidates(std::size_t i, Query& query, Candidates& out) const {
     if (scan_first_ || !overlapping(i, query, out)) scan(i, out);
@@ -157,19 +157,17 @@ class FrameBoxes {
   /// 32 cells per axis, halved (down to 4) while the polygons cover more
   /// than 4 cells on average: a query marks every member of every cell it
   /// covers, so a grid finer than the polygons marks each candidate many
-  /// times (the sliver pile's leaves covered 20-44 cells each at 32, 8,355
-  /// marks per query for 720 candidates; at 4-8 cells per axis the pile
-  /// solves 12-18% faster).
+  /// times (at 32 cells per axis a sliver covers dozens of cells, so a query
+  /// makes many marks per candidate; a coarser grid makes few).
   std::array<std::vector<double>, 2> cuts_;
   std::vector<std::uint32_t> cell_begin_, members_, wide_;
   std::vector<OperandBoxes> operand_boxes_;  ///< empty for a leaf of one operand
   bool scan_first_ = false;                  ///< see candidates()
   /// The joint box of each block of kBlock consecutive polygons, per axis:
   /// scan_avx2 skips blocks apart from the query's box. Consecutive polygons
-  /// are mostly neighbours in their mesh: in the sliver pile skipping blocks
-  /// of 8 / 16 / 32 / 64 polygons took the whole run from 26.73 G
-  /// instructions to 25.91 / 25.53 / 25.39 / 25.38 G (leaf frame only), 25.09 G
-  /// with 32 and the operands' frames.
+  /// are mostly neighbours in their mesh, so many blocks lie apart from a
+  /// query. 32 polygons a block: smaller blocks spend more on the joint
+  /// boxes, and larger ones gain almost nothing more.
   static constexpr std::size_t kBlock = 32;
   static_assert(kBlock % 4 == 0, "scan_avx2 tests whole groups of four within a block");
   AxisArrays block_lo_, block_hi_;

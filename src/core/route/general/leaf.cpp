@@ -59,11 +59,11 @@ struct LeafScratch {
 /// (LeafPlaneFilter: classify's, with one bound for the leaf), and
 /// the exact test only for the vertices it cannot place, none at all when
 /// the filter puts every vertex strictly on one side (most polygons a pile
-/// leaf's frame grid offers). Filtering first and then calling
-/// touches_plane, which filtered again, was 12% of the sliver pile's solve.
-/// Inlined into gather's two calls: ~24M calls in the sliver pile, whose
-/// prologue and epilogue were a fifth of the filter's cost (25.05 -> 24.78 G
-/// instructions for the whole run).
+/// leaf's frame grid offers), so that no vertex is filtered twice, as it
+/// would be by filtering first and then calling touches_plane, which filters
+/// again. Inlined into gather's two calls: a pile of slivers calls it for
+/// every candidate, and a call's prologue and epilogue would be a large part
+/// of the filter's cost.
 [[gnu::always_inline]] inline bool touches_plane_filtered(std::span<const std::array<double, 3>> verts,
                                                           std::span<const std::uint8_t> grid, const SoupPolygon& o,
                                                           const Plane& plane, const LeafPlaneFilter& filter,
@@ -107,11 +107,11 @@ struct LeafScratch {
 /// of the two touches the other's plane without crossing it, its chord on
 /// the common line is empty or one vertex, unless two of its vertices lie
 /// there (an edge in the other's plane: kept, untested).
-/// In the sliver pile's leaves 99.9% of the 14.3M polygons that touch t's
-/// plane within t's box meet t in at most a point (most of them share one
-/// vertex with it: the rods' end fans); as `related` they made every operand
+/// In a pile of slivers nearly all the polygons that touch t's plane within
+/// t's box meet t in at most a point (most of them share one vertex with
+/// it: the end fans of rods); as `related` they would make every operand
 /// free on both sides of t, ruling out the piece-level early termination,
-/// and each was tried as a cut of every piece.
+/// and each would be tried as a cut of every piece.
 bool may_share_a_stretch(const Polygon& t, const Polygon& o, const std::vector<std::int8_t>& o_signs,
                          std::vector<std::int8_t>& t_signs, std::vector<Plane>& cons) {
   const Sides os = sides_of(o_signs);
@@ -170,7 +170,7 @@ void gather(const Soup& soup, const SoupPolygon& t, const SolveContext& ctx,
     // In a pile leaf, a polygon on a plane not parallel to t's is first
     // tested against t's plane from the flat approximations, without reading
     // its soup entry (a cache miss each: most candidates the frame grid
-    // offers, 63% in the sliver pile, stop here).
+    // offers stop here).
     const bool parallel = direction[i] == t_direction;
     const bool plane_first = sc.approx && !parallel;
     if (plane_first &&
@@ -451,15 +451,12 @@ struct LeafIndex {
 
 /// Leaves over this size get the pile filters (approximations, frame boxes,
 /// the frame grid); "pile leaf" in this file means such a leaf. The filters
-/// were meant for piles (thousands of polygons) and started at 256, but a
-/// leaf of the usual size (then up to 64 polygons) is already worth them:
-/// gather is quadratic in the leaf, the set-up linear.
-/// With 16 the general path (--no-solid-check, callgrind, whole run, union)
-/// took 20% fewer instructions on pair003, 12% on EMBER case 16, 10% on
-/// pair018, and 22% on EMBER case 396 (default options: a self-intersecting
-/// operand, whose fans of coplanar slivers leave leaves of ~200 polygons
-/// that no split pays for); 32 and 0 were within 1% of 16. The filters only
-/// narrow the candidates, so the output is the same.
+/// are named for piles (thousands of polygons), but a leaf of the usual
+/// size is already worth them: gather is quadratic in the leaf, the set-up
+/// linear. At 16, leaves of the usual size get the filters, as do the
+/// leaves of a few hundred polygons that fans of coplanar slivers leave and
+/// no split pays for; the cost changes little for thresholds near it. The
+/// filters only narrow the candidates, so the output is the same.
 constexpr std::size_t kPileLeaf = 16;
 
 LeafIndex index_leaf(const Soup& soup) {
@@ -514,8 +511,8 @@ void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafInd
           "this input is too degenerate for the current implementation");
   };
   // Polygons are solved in edge_neighbour_order, so that more of them take
-  // their winding numbers across input edges (the sliver pile: 111,284 traces
-  // in soup order, 14,815 in this one), and their pieces are emitted in soup
+  // their winding numbers across input edges (far fewer traces than in soup
+  // order, where consecutive polygons are rarely neighbours), and their pieces are emitted in soup
   // order: `produced` holds them by polygon, from produced_from[ti - begin] on.
   std::vector<OutputPolygon> produced;
   std::vector<std::size_t> produced_from(end - begin);
@@ -626,13 +623,13 @@ void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafInd
 void solve_leaf(const Subproblem& pb, const SolveContext& ctx, std::vector<OutputPolygon>& out) {
   const LeafIndex index = index_leaf(pb.soup);
   const std::size_t size = pb.soup.size();
-  // A pile leaf (thousands of polygons that no split separates: the sliver
-  // pile has 14, of 60,259 polygons in all) is shared by the threads in fixed blocks of
+  // A pile leaf (thousands of polygons that no split separates) is shared by
+  // the threads in fixed blocks of
   // polygons, so the pieces and their order are the same at any thread count.
   // Each block hands winding numbers across input edges only among its own
   // polygons (edge_windings.hpp): the values are exact either way, but each
-  // block boundary costs traces. Blocks of 128 polygons made the sliver
-  // pile's solve ~10% slower at 2 threads than one block per leaf, 512 ~5%.
+  // block boundary costs traces: 512 polygons a block keeps those traces
+  // few while still giving the threads several blocks of a pile leaf.
   constexpr std::size_t kBlock = 512;
   if (size <= kBlock) {  // one block: no tasks, no copy
     solve_polygons(pb, ctx, index, 0, size, out);

@@ -5,9 +5,9 @@
 // box worked out from its corners) is what the subdivision of the general
 // path starts from. The solid path and the proof with operand trees never
 // read it: they work on the grid triangles (GridTriangles::corners) and the
-// operands' id ranges. Building it up front was 8.4 M of the bunny pair's
-// 306.8 M instructions (2.7%) and 80 bytes per input triangle at the solid
-// path's peak, for inputs that then never used it.
+// operands' id ranges. Building it up front would cost a pass over every
+// input triangle and 80 bytes per input triangle at the solid path's peak,
+// for inputs that then never use it.
 #include <cstdint>
 #include <mutex>
 #include <span>

@@ -22,8 +22,8 @@ bool indicator_constant(const Subproblem& problem, const SolveContext& ctx);
 /// size (each polygon meets every polygon whose box meets its own), so the
 /// split pays only while two children of (n + s) / 2 polygons cost less than
 /// one leaf of n: (n + s)^2 < 2 n^2, that is s < (sqrt 2 - 1) n ~ 0.41 n.
-/// (With 3/4 of the polygons allowed to straddle, the sliver pile's leaves
-/// held 294,802 polygon copies of its 31,360 triangles.)
+/// (With 3/4 of the polygons allowed to straddle, a pile's leaves would hold
+/// each of its triangles many times over.)
 bool split_pays(std::size_t polygons, std::size_t straddling);
 
 /// What solve() emits: output polygons in a deterministic order that does not

@@ -52,8 +52,9 @@ bool add_crossing(const AxisSegment& s, const Polygon& poly, std::uint32_t opera
 /// as one call is (then w and delta are unspecified). visit only adds
 /// integers to w and delta (crossings), so the sums do not depend on the
 /// order: a root soup, where the proof classifies one polygon per component
-/// against the whole input (1.08M polygons, ~35 ms per trace, serial at any
-/// thread count), is scanned in parallel chunks with their own sums.
+/// against the whole input (on a large input a long pass that would be
+/// serial at any thread count), is scanned in parallel chunks with their own
+/// sums.
 template <typename Visit>
 bool scan_soup(std::size_t n, Wnv& w, Wnv& delta, Visit&& visit) {
   constexpr std::size_t kParallel = std::size_t{1} << 16, kChunk = std::size_t{1} << 13;

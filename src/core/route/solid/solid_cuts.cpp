@@ -30,8 +30,8 @@ constexpr std::size_t kParallelCut = 256;
 /// once: the pieces that o's plane splits are split in parallel, then the
 /// halves are put in place in piece order, as the serial loop does (each
 /// piece is cut by o on its own, and the new halves are not cut by o again).
-/// For a large face under a pile of slivers (EMBER case 582: 3,000 partners,
-/// 4,400 pieces), whose cuts would otherwise hold one thread.
+/// For a large face under a pile of slivers (thousands of partners and of
+/// pieces), whose cuts would otherwise hold one thread.
 void split_pieces_in_parallel(CutScratch& cs, std::size_t n, const Plane& support, const Polygon& o,
                               const PieceBox& ob) {
   struct Split {

@@ -40,9 +40,9 @@ class PolygonCache {
   std::size_t size() const { return used_; }
   /// Forgets everything (buffers are kept) once the cache holds far more
   /// than the next triangle needs (`partners` + itself) and more than
-  /// kKeep polygons. Without that floor a triangle with few partners emptied
-  /// the cache between two crowded ones: the 200-cube pile built 358k
-  /// polygons for its 2,400 triangles.
+  /// kKeep polygons. Without that floor a triangle with few partners would
+  /// empty the cache between two crowded ones, and a pile of small operands
+  /// would build its triangles many times over.
   void reset_if_full(std::size_t partners) {
     if (used_ < std::max(kKeep, 256 + 2 * partners)) return;
     std::fill(slots_.begin(), slots_.end(), kEmpty);

@@ -87,9 +87,9 @@ class SolidHandover {
 ///    f's, and U's operand's winding number drops by one from back to front
 ///    (its surface is outward).
 /// t's own operand is 0 in front, 1 behind on every piece. Checked against
-/// a trace for each of 316,425 derived pieces of the benchmark's cases and
-/// 73,219 of the core tests (no difference), and by the byte-identical
-/// outputs of tools/compare_builds.py.
+/// a trace for every derived piece of the benchmark's cases and of the core
+/// tests (no difference), and
+/// by the byte-identical outputs of tools/compare_builds.py.
 /// Winding numbers of one triangle's pieces as they become known: per piece
 /// its front, then its back values (`operands` each), and the order in which
 /// they became known.

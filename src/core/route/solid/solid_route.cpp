@@ -37,9 +37,10 @@ std::int32_t extent(const Box32& b) { return std::max({b.hi[0] - b.lo[0], b.hi[1
 using PairSink = tbb::enumerable_thread_specific<std::vector<std::pair<std::uint32_t, std::uint32_t>>>;
 
 /// The partner search's work so far against its budget (find_partners):
-/// the slot pairs of the leaf pairs it visits (kLeaf^2 each; counting per
-/// triangle, as the contact search does, cost the bunny pair twice the
-/// instructions), added up per task in batches of kFlush.
+/// the slot pairs of the leaf pairs it visits (kLeaf^2 each: one addition
+/// per leaf pair, where counting per triangle, as the contact search does,
+/// would add work to the innermost loop), added up per task in batches of
+/// kFlush.
 struct Work {
   static constexpr std::size_t kFlush = std::size_t{1} << 14;
   std::size_t budget;
@@ -54,7 +55,8 @@ struct Work {
 };
 
 /// popcount(m) > 2 without std::popcount, which compiles to a libgcc call
-/// on the baseline x86-64 target (0.3% of the sliver pile's profile).
+/// on the baseline x86-64 target, in a loop that runs once per triangle of
+/// every leaf pair.
 constexpr bool more_than_two_bits(unsigned m) {
   m &= m - 1;  // the lowest set bit cleared, twice
   m &= m - 1;
@@ -80,8 +82,8 @@ struct Side {
 /// whose box meets y's against y's triangles whose boxes and diagonal
 /// extents meet its own, by x's plane first (apart_triangles_meet). Reported
 /// as (x's id, y's id), or swapped.
-/// Inlined: it runs once per leaf pair, most of which test few pairs (as a
-/// call it cost the bunny pair's union 0.4% more instructions).
+/// Inlined: it runs once per leaf pair, most of which test few pairs, so a
+/// call's overhead would weigh on every one of them.
 template <bool swap, bool Wide, bool Framed>
 [[gnu::always_inline]] inline void leaf_meeting_pairs(const GridTriangles& grid, const Side& xs, std::size_t x,
                                                       const Side& ys, std::size_t y, PairSink& sink) {
@@ -93,21 +95,21 @@ template <bool swap, bool Wide, bool Framed>
   for (unsigned near = X.overlap_mask_in<Wide>(x, y_box); near != 0; near &= near - 1) {
     const std::size_t i = xb + static_cast<std::size_t>(std::countr_zero(near));
     unsigned m = Y.overlap_mask_in<Wide>(y, X.box(i));
-    // Framed: first the extents in the operands' common frame (EMBER cases
-    // 582 and 16: a sliver operand inside the other).
+    // Framed: first the extents in the operands' common frame (an operand of
+    // slivers beside or inside the other).
     if constexpr (Framed)
       if (m != 0) m &= ~ys.frame->apart_mask_in<Wide>(y, xs.frame->extent(i));
-    // Boxes that meet, diagonal extents that do not (the bunny pair: a third
-    // of the pairs the boxes leave), eight at a time.
+    // Boxes that meet, diagonal extents that do not (a good share of the
+    // pairs the boxes leave, even on ordinary meshes), eight at a time.
     if (m != 0) m &= ~ys.diagonals.apart_mask_in<Wide>(y, xs.diagonals.extent(i));
     if (m == 0) continue;
     const std::uint32_t ix = x_base + X.item(i);
     const std::array<IntPoint, 3>& tx = grid.corners[ix];
     const std::array<std::int64_t, 3>& nx = grid.normals[ix];
-    // All of y beside x's plane: none of its triangles meets x (pair019:
-    // 82% of the pairs the boxes leave, dismissed eight at a time). Not for
-    // one or two pairs, whose own tests cost about as much (the bunny pair:
-    // 1.5 M more instructions with the test from two pairs on).
+    // All of y beside x's plane: none of its triangles meets x (where the
+    // operands lie side by side, most of the pairs the boxes leave,
+    // dismissed eight at a time). Not for one or two pairs, whose own tests
+    // cost about as much as this one.
     if (more_than_two_bits(m) && box_clearly_beside(y_box, tx[0], nx)) continue;
     // Most of the rest lie beside x's plane too: their sides in double first.
     const PlaneSideFilter x_plane(tx[0], nx);
@@ -126,8 +128,9 @@ template <bool swap, bool Wide, bool Framed>
 /// The first test of a pair (the other's corners against one plane)
 /// rejects most pairs, but only with the larger triangle's plane: a small
 /// triangle beside a large one's plane has the large one crossing its own
-/// (pair001, a bunny and a CAD part: 85% of the pairs passed the test by
-/// a's plane and failed the one by b's). Which is larger is judged once per
+/// (between a fine mesh and a coarse one, most pairs pass the test by the
+/// small triangle's plane and fail the one by the large one's). Which is
+/// larger is judged once per
 /// leaf pair, by the leaves' boxes. The answer is exact either way, and the
 /// pairs are sorted after. Wide: the 8-lane leaf tests (wide_lanes.hpp).
 template <bool Wide, bool Framed>
@@ -168,8 +171,8 @@ bool descend_a(const TriangleTree& A, const TriangleTree& B, const NodePair& v) 
 }
 
 /// Every meeting pair under node pair `root`, depth first with a stack of
-/// its own: as a recursion each node pair cost ~150 instructions of calls
-/// and spills (the bunny pair visits 145k of them for its 55k leaf pairs).
+/// its own: as a recursion each node pair would pay for calls and spills,
+/// and a search visits several node pairs per leaf pair it reaches.
 /// A descent adds at most one pending pair per level of either tree, and
 /// a tree holds fewer than 2^32 triangles, 8 per leaf (< 30 levels).
 /// Stops once the search is over its budget or `stop` is set (checked at
@@ -241,8 +244,8 @@ void meeting_pairs(const GridTriangles& grid, const Side& as, const Side& bs, co
   }
   // Here, above the small subtrees, once per task (and in them once per
   // flush of the work count). (A proof that finds a self-intersection sets
-  // `stop`; the sliver pile's speculative run otherwise searched its twin
-  // rods' ~all-pairs to the end.)
+  // `stop`; otherwise a speculative run over a pile of slivers would search
+  // its nearly all-pairs to the end.)
   if (stop.load(std::memory_order_relaxed) || work.over.load(std::memory_order_relaxed)) return;
   const auto child = [&](std::size_t c) {
     const NodePair w =
@@ -256,9 +259,8 @@ void meeting_pairs(const GridTriangles& grid, const Side& as, const Side& bs, co
 
 std::optional<FrameAxes> partner_frame(std::span<const std::array<IntPoint, 3>> x,
                                        std::span<const std::array<IntPoint, 3>> y, const TriangleTree& y_tree) {
-  // Small operands: their search costs less than the sample (the 200-cube
-  // pile's 12-triangle operands: 2.74 -> 3.52 G instructions sampling each
-  // of their overlapping pairs).
+  // Small operands: their search costs less than the sample, which a pile
+  // of many small operands would otherwise pay for each overlapping pair.
   if (std::min(x.size(), y.size()) < kPartnerFrameMin) return std::nullopt;
   const auto x_corners = [&](std::size_t i) -> const std::array<IntPoint, 3>& { return x[i]; };
   const auto y_corners = [&](std::size_t j) -> const std::array<IntPoint, 3>& { return y[j]; };
@@ -452,9 +454,9 @@ class SolidSolver {
     chunk_out.assign(chunks.size(), {});
     std::atomic<bool> failed{false};
     // The built polygons outlive a range of chunks: a pile's triangles share
-    // their partners from one operand's chunk to the next (the 200-cube
-    // pile's 200 one-chunk operands built each of ~2,000 partners once per
-    // range of chunks). Their content depends only on the id.
+    // their partners from one operand's chunk to the next (a pile of many
+    // one-chunk operands would otherwise build each shared partner once per
+    // chunk). Their content depends only on the id.
     tbb::enumerable_thread_specific<PolygonCache> caches([&] { return PolygonCache(grid_); });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1),
                       [&](const tbb::blocked_range<std::size_t>& r) {
@@ -583,8 +585,8 @@ class SolidSolver {
   /// neighbours across cut lines (CutHandover::spread), tracing a piece only
   /// where nothing known reaches it. A triangle then costs one trace per
   /// group of pieces its cut lines cannot hand across (none, mostly: its
-  /// input edges decide a piece), where every piece its input edges did not
-  /// decide used to be traced (pair001: 2,008 traces, now 6).
+  /// input edges decide a piece), rather than one trace per piece its input
+  /// edges do not decide, which on a finely cut triangle is most of them.
   bool classify_in_turn(const std::vector<Piece>& pieces, const Polygon& t, std::uint32_t id, std::uint32_t o,
                         ChunkScratch& cs) const {
     const std::size_t n = pieces.size();

@@ -66,11 +66,11 @@ struct Partners {
 /// A frame in which operands X and Y's slivers lie apart, if a sample of X's
 /// triangles queried against Y's tree shows it worth its extents
 /// (frame_sample.hpp): of X's principal frame and Y's, the one that
-/// dismisses more. EMBER cases 582 and 16 get one (their sliver operand's);
-/// ordinary pairs (the bunny pair) none, and neither does pair020, whose
-/// 857k exact tests for 12.8k meeting pairs the frames hardly thin (the
-/// sample, either way round: < 2 pairs per triangle). None where either
-/// operand has fewer than 256 triangles.
+/// dismisses more. An operand of long slivers off the axes beside or inside
+/// the other gets one (its sliver operand's); ordinary pairs get none, and
+/// neither do pairs whose many exact tests the frames hardly thin (the
+/// sample dismisses too few pairs per triangle either way round to pay for
+/// the extents). None where either operand has fewer than 256 triangles.
 /// Deterministic (a fixed sample). Public for its tests.
 std::optional<FrameAxes> partner_frame(std::span<const std::array<IntPoint, 3>> x,
                                        std::span<const std::array<IntPoint, 3>> y, const TriangleTree& y_tree);
@@ -86,11 +86,11 @@ Partners find_partners(const GridTriangles& grid, const OperandTrees& trees, std
 /// The budget of a partner search started before the proof of its premise
 /// ended (boolean.cpp), per input triangle (plus kSpeculativeAllowance): the
 /// search gives up, and runs again once the proof has passed. In those
-/// units the pair and paper cases of the benchmark visit at most 113 per
-/// triangle (EMBER case 582 before it had a common frame, partner_frame;
-/// the bunny pair 70); the sliver pile's twin rods, which the proof then
-/// rejects, 2,888: their search held one of two threads for the proof's
-/// whole 0.55 s.
+/// units the budget lies well above what ordinary pairs visit per triangle
+/// (even slivers off the axes without a common frame, partner_frame), and
+/// far below a pile of slivers whose proof then fails: without the budget
+/// such a search would hold a thread for the whole of the proof it waits
+/// on.
 inline constexpr std::size_t kSpeculativePartnersPerTriangle = 512;
 inline constexpr std::size_t kSpeculativeAllowance = std::size_t{1} << 16;
 
