@@ -100,7 +100,16 @@ std::string write_mesh(const Mesh& mesh, MeshFormat format, std::span<const Prov
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path) { write_mesh(mesh, path, {}); }
 
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path, std::span<const Provenance> provenance) {
-  const std::string data = write_mesh(mesh, format_from_path(path), provenance);
+  std::string data;
+  try {
+    data = write_mesh(mesh, format_from_path(path), provenance);
+  } catch (const Error& e) {
+    // Name the file, keeping the fields (vertex, face) of the problem.
+    if (!e.where().file.empty()) throw;
+    ErrorLocation where = e.where();
+    where.file = path.string();
+    throw Error(e.problem(), where);
+  }
   File f(std::fopen(path.c_str(), "wb"));
   if (!f) throw Error(path.string() + ": cannot open for writing: " + std::strerror(errno));
   if (std::fwrite(data.data(), 1, data.size(), f.get()) != data.size())

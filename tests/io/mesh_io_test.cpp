@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -87,6 +88,32 @@ TEST(MeshIo, WritersRejectMalformedMeshes) {
   two.add_vertex({1, 0, 0});
   two.add_face({0, 1});
   EXPECT_ERROR_HAS(write_obj(two), "fewer than 3");
+}
+
+TEST(MeshIo, WritersRejectNonFiniteCoordinates) {
+  const auto dir = fs::temp_directory_path() / ("ember_nonfinite_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+    Mesh m = test::cube_quads();
+    m.vertices[3].y = bad;
+    for (MeshFormat f : {MeshFormat::Obj, MeshFormat::Off, MeshFormat::Ply, MeshFormat::Stl, MeshFormat::ThreeMf}) {
+      EXPECT_ERROR_HAS(write_mesh(m, f), "vertex 3", "non-finite");
+      try {
+        (void)write_mesh(m, f);
+      } catch (const Error& e) {
+        EXPECT_EQ(e.where().vertex, std::optional<std::size_t>(3));
+      }
+    }
+    for (const char* name : {"m.obj", "m.off", "m.ply", "m.stl", "m.3mf"}) {
+      EXPECT_ERROR_HAS(write_mesh(m, dir / name), (dir / name).string(), "vertex 3", "non-finite");
+      EXPECT_FALSE(fs::exists(dir / name)) << name;
+    }
+  }
+  Mesh out_of_range = test::cube_quads();
+  out_of_range.indices[0] = 8;
+  EXPECT_ERROR_HAS(write_mesh(out_of_range, dir / "r.obj"), "r.obj", "index 8", "out of range");
+  EXPECT_FALSE(fs::exists(dir / "r.obj"));
+  fs::remove_all(dir);
 }
 
 TEST(MeshIo, ReadMeshDispatchesOnExtension) {
