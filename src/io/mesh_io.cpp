@@ -1,5 +1,7 @@
 // File-level entry points: choose the format by extension, read the whole
 // file into memory (the parsers work on one contiguous buffer) and write.
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -22,6 +24,17 @@ std::string read_file(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(path, ec)) throw Error(path.string() + ": is a directory, not a mesh file");
   File f(std::fopen(path.c_str(), "rb"));
   if (!f) throw Error(path.string() + ": cannot open for reading: " + std::strerror(errno));
+  // After following symlinks: a device such as /dev/zero never ends and would
+  // be read until memory runs out. Pipes and FIFOs end when the writer closes.
+  struct stat st {};
+  if (::fstat(::fileno(f.get()), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode)) {
+    const char* kind = S_ISCHR(st.st_mode)    ? "a character device"
+                       : S_ISBLK(st.st_mode)  ? "a block device"
+                       : S_ISSOCK(st.st_mode) ? "a socket"
+                                              : "neither a regular file nor a pipe";
+    throw Error("is " + std::string(kind) + ", not a mesh file; give a regular file, a pipe or a FIFO",
+                {.file = path.string()});
+  }
   std::string data;
   char buf[1 << 16];
   // Size from the file when known, so large files are read with one allocation.

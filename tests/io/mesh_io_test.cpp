@@ -3,7 +3,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <thread>
 
 #include "ember/io/mesh_io.hpp"
 #include "support/io_files.hpp"
@@ -66,6 +69,19 @@ TEST(MeshIo, MissingFileAndDirectoryAreNamed) {
   EXPECT_ERROR_HAS(read_mesh(dir.path() / "nope.obj"), "nope.obj", "cannot open");
   fs::create_directories(dir.path() / "d.stl");
   EXPECT_ERROR_HAS(read_mesh(dir.path() / "d.stl"), "d.stl", "directory");
+}
+
+TEST(MeshIo, DevicesAreRefusedButFifosAreRead) {
+  TempDir dir;
+  fs::create_symlink("/dev/zero", dir.path() / "zero.stl");
+  EXPECT_ERROR_HAS(read_mesh(dir.path() / "zero.stl"), "zero.stl", "character device", "not a mesh file");
+  EXPECT_ERROR_HAS(read_meshes(dir.path() / "zero.stl"), "zero.stl", "character device");
+  const fs::path fifo = dir.path() / "pipe.obj";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::thread writer([&] { std::ofstream(fifo) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"; });
+  const Mesh m = read_mesh(fifo);
+  writer.join();
+  EXPECT_EQ(m.face_count(), 1u);
 }
 
 TEST(MeshIo, WriteFailureThrows) {
