@@ -73,6 +73,8 @@ struct BooleanArgs {
   std::string output;
   std::string min_k;  ///< as given (checked after parsing: usage.hpp)
   std::string threads = "0";
+  std::string max_3mf_triangles;   ///< as given; empty: ReadOptions' default
+  std::string max_3mf_instancing;  ///< as given; empty: ReadOptions' default
   bool stats = false;
   bool allow_open = false;
   bool assume_solid = false;
@@ -134,7 +136,14 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
   }
   ember::format_from_path(a.output);  // reject an unknown output extension before any work
   std::vector<std::string> read_warnings;
-  const ember::cli::Operands operands = ember::cli::read_operands(a.inputs, &read_warnings, &g_activity);
+  ember::ReadOptions read_options;
+  if (!a.max_3mf_triangles.empty())
+    read_options.max_3mf_triangles =
+        ember::cli::parse_count_option("--max-3mf-triangles", a.max_3mf_triangles, "a whole number from 1");
+  if (!a.max_3mf_instancing.empty())
+    read_options.max_3mf_instancing =
+        ember::cli::parse_count_option("--max-3mf-instancing", a.max_3mf_instancing, "a whole number from 1");
+  const ember::cli::Operands operands = ember::cli::read_operands(a.inputs, &read_warnings, &g_activity, read_options);
   check_operand_count(operands.meshes.size(), a);
   ember::BooleanOptions options = boolean_options(op, a, operands.meshes.size());
   std::size_t triangles = 0;
@@ -216,6 +225,11 @@ int main(int argc, char** argv) {
     sub->add_option("-o,--output", args.output, "Output mesh; format from extension")->required();
     sub->add_option("--min-k", args.min_k, "union only: keep the solid inside at least K operands (1..operands)");
     sub->add_option("--threads", args.threads, "Worker threads (0 = all cores; results are identical)");
+    sub->add_option("--max-3mf-triangles", args.max_3mf_triangles,
+                    "Refuse a 3MF file whose components expand to more triangles (default 100000000)");
+    sub->add_option("--max-3mf-instancing", args.max_3mf_instancing,
+                    "Refuse a 3MF file expanding to over 1 million triangles and this many times what it stores "
+                    "(default 1000)");
     sub->add_flag("--stats", args.stats, "Print one JSON object with timing and counts on stderr");
     sub->add_flag("--allow-open", args.allow_open, "Accept inputs that are not closed (warns)");
     sub->add_flag("--quiet", args.quiet, "No warnings and no progress bar on stderr (errors are still printed)");

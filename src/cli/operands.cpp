@@ -5,8 +5,8 @@
 
 namespace ember::cli {
 
-Operands read_operands(const std::vector<std::string>& paths, std::vector<std::string>* warnings,
-                       std::string* activity) {
+Operands read_operands(const std::vector<std::string>& paths, std::vector<std::string>* warnings, std::string* activity,
+                       const ReadOptions& options) {
   Operands out;
   for (const std::string& path : paths) {
     if (activity) *activity = "reading " + path;
@@ -14,7 +14,7 @@ Operands read_operands(const std::vector<std::string>& paths, std::vector<std::s
     // may report tolerated oddities (an ASCII STL without 'endsolid').
     std::vector<Mesh> meshes;
     if (format_from_path(path) == MeshFormat::ThreeMf)
-      meshes = read_meshes(path);
+      meshes = read_meshes(path, options);
     else
       meshes.push_back(read_mesh(path, warnings));
     for (std::size_t i = 0; i < meshes.size(); ++i) {

@@ -90,10 +90,12 @@ Mesh read_mesh(const std::filesystem::path& path, std::vector<std::string>* warn
   return read_mesh(data, format, path.string(), warnings);
 }
 
-std::vector<Mesh> read_meshes(const std::filesystem::path& path) {
+std::vector<Mesh> read_meshes(const std::filesystem::path& path) { return read_meshes(path, ReadOptions{}); }
+
+std::vector<Mesh> read_meshes(const std::filesystem::path& path, const ReadOptions& options) {
   const MeshFormat format = format_from_path(path);
   const std::string data = read_file(path);
-  if (format == MeshFormat::ThreeMf) return read_3mf(data, path.string());
+  if (format == MeshFormat::ThreeMf) return read_3mf(data, path.string(), options);
   std::vector<Mesh> meshes;
   meshes.push_back(read_mesh(data, format, path.string()));
   return meshes;

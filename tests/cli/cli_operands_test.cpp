@@ -46,6 +46,23 @@ TEST(CliOperands, OneThreeMfFileWithTwoObjectsIsTwoOperands) {
   EXPECT_EQ(r.exit_code, 0) << describe(r);
 }
 
+TEST(CliOperands, ThreeMfExpansionLimitIsAnOption) {
+  TempDir dir;
+  write_two_object_3mf(dir);  // 2 x 12 triangles
+  RunResult r = run_cli(dir, {"union", "two.3mf", "-o", "o.obj", "--max-3mf-triangles", "20"});
+  EXPECT_EQ(r.exit_code, 1) << describe(r);
+  EXPECT_TRUE(has(r.err, "ember: two.3mf: 3MF: the build items expand to 24 triangles")) << describe(r);
+  EXPECT_TRUE(has(r.err, "--max-3mf-triangles")) << describe(r);
+  EXPECT_FALSE(fs::exists(dir / "o.obj"));
+  r = run_cli(dir, {"union", "two.3mf", "-o", "o.obj", "--max-3mf-triangles", "24", "--max-3mf-instancing", "1"});
+  EXPECT_EQ(r.exit_code, 0) << describe(r);
+  for (const char* bad : {"0", "x", "-5", "99999999999999999999999"}) {
+    r = run_cli(dir, {"union", "two.3mf", "-o", "o2.obj", "--max-3mf-triangles", bad});
+    EXPECT_EQ(r.exit_code, 2) << describe(r);
+    EXPECT_TRUE(has(r.err, "--max-3mf-triangles: '" + std::string(bad) + "'")) << describe(r);
+  }
+}
+
 TEST(CliOperands, FewerThanTwoOperandsIsAUsageError) {
   TempDir dir;
   ember::write_mesh(box({0, 0, 0}, {1, 1, 1}), dir / "a.obj");
