@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <string>
@@ -146,8 +147,34 @@ void flatten(NMR::PLib3MFModelObjectResource* object, const Affine& to_world, Me
   }
 }
 
-/// Adds `mesh` to `model` as one mesh object with one build item.
-void add_object(NMR::PLib3MFModel* model, const Mesh& mesh) {
+/// 64-bit FNV-1a over the mesh's coordinates (bit patterns) and indices.
+std::uint64_t content_hash(const Mesh& mesh, std::uint64_t seed) {
+  std::uint64_t h = 0xcbf29ce484222325ull ^ seed;
+  const auto mix = [&h](const void* p, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ static_cast<const unsigned char*>(p)[i]) * 0x100000001b3ull;
+  };
+  mix(mesh.vertices.data(), mesh.vertices.size() * sizeof(Vec3d));
+  mix(mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
+  mix(mesh.face_offsets.data(), mesh.face_offsets.size() * sizeof(std::uint32_t));
+  return h;
+}
+
+/// A UUID (RFC 4122 layout, version 8: custom) made from two hashes, so that
+/// the same meshes always give the same file. lib3mf would otherwise draw
+/// random UUIDs and two identical runs would differ byte for byte.
+std::string derived_uuid(std::uint64_t hi, std::uint64_t lo) {
+  hi = (hi & ~0xf000ull) | 0x8000ull;              // version 8
+  lo = (lo & ~(0xc0ull << 56)) | (0x80ull << 56);  // variant 10
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%08x-%04x-%04x-%04x-%012llx", static_cast<unsigned>(hi >> 32),
+                static_cast<unsigned>((hi >> 16) & 0xffff), static_cast<unsigned>(hi & 0xffff),
+                static_cast<unsigned>(lo >> 48), static_cast<unsigned long long>(lo & 0xffffffffffffull));
+  return buf;
+}
+
+/// Adds `mesh` to `model` as one mesh object with one build item; their
+/// UUIDs derive from the mesh, its position `index` and `file_hash`.
+void add_object(NMR::PLib3MFModel* model, const Mesh& mesh, std::size_t index, std::uint64_t file_hash) {
   io_detail::check_mesh_for_writing(mesh, "3MF");
   std::vector<NMR::MODELMESHVERTEX> vertices;
   vertices.reserve(mesh.vertices.size());
@@ -175,6 +202,11 @@ void add_object(NMR::PLib3MFModel* model, const Mesh& mesh) {
   check(NMR::lib3mf_model_addbuilditem(model, object_raw, nullptr, &item_raw), model, "output",
         "adding the build item");
   const Handle item(item_raw);
+  const std::uint64_t h = content_hash(mesh, index) ^ file_hash;
+  check(NMR::lib3mf_object_setuuidutf8(object_raw, derived_uuid(h, h * 0x9E3779B97F4A7C15ull + 1).c_str()), object_raw,
+        "output", "setting the object UUID");
+  check(NMR::lib3mf_builditem_setuuidutf8(item_raw, derived_uuid(h, h * 0x9E3779B97F4A7C15ull + 2).c_str()), item_raw,
+        "output", "setting the build item UUID");
 }
 
 }  // namespace
@@ -235,7 +267,11 @@ std::string write_3mf(const Mesh& mesh) { return write_3mf(std::span<const Mesh>
 std::string write_3mf(std::span<const Mesh> meshes) {
   const Handle model = new_model();
   check(NMR::lib3mf_model_setunit(model.get(), NMR::MODELUNIT_MILLIMETER), model.get(), "output", "setting the unit");
-  for (const Mesh& mesh : meshes) add_object(model.get(), mesh);
+  std::uint64_t file_hash = 0x3a5f;
+  for (std::size_t i = 0; i < meshes.size(); ++i) file_hash = file_hash * 31 + content_hash(meshes[i], 0x77 + i);
+  for (std::size_t i = 0; i < meshes.size(); ++i) add_object(model.get(), meshes[i], i, file_hash);
+  check(NMR::lib3mf_model_setbuilduuidutf8(model.get(), derived_uuid(file_hash, ~file_hash).c_str()), model.get(),
+        "output", "setting the build UUID");
   NMR::PLib3MFModelWriter* writer_raw = nullptr;
   check(NMR::lib3mf_model_querywriter(model.get(), "3mf", &writer_raw), model.get(), "output", "creating a writer");
   const Handle writer(writer_raw);

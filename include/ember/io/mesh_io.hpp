@@ -99,7 +99,9 @@ std::string write_ply(const Mesh& mesh, std::span<const Provenance> provenance =
 /// 3MF with one object and one build item, unit millimeter; faces
 /// fan-triangulated. lib3mf 1.x keeps coordinates as floats and writes them
 /// with 6 decimals, so they move by up to 1e-6 (in mm: 1 nm) — fine for
-/// printing; use OBJ, OFF or PLY for bit-exact results.
+/// printing; use OBJ, OFF or PLY for bit-exact results. The UUIDs 3MF
+/// requires are derived from the content, so the same meshes always give the
+/// same bytes.
 std::string write_3mf(const Mesh& mesh);
 /// 3MF with one object and build item per mesh (read back by read_3mf as
 /// separate meshes, by the CLI as separate operands).
