@@ -107,8 +107,13 @@ ember::BooleanOptions boolean_options(ember::Operation& op, const BooleanArgs& a
 /// --min-k above the file count is only known to be wrong once 3MF files
 /// are read.
 bool has_3mf_input(const BooleanArgs& a) {
-  for (const std::string& in : a.inputs)
-    if (ember::format_from_path(in) == ember::MeshFormat::ThreeMf) return true;
+  for (const std::string& in : a.inputs) {
+    try {
+      if (ember::format_from_path(in) == ember::MeshFormat::ThreeMf) return true;
+    } catch (const ember::Error&) {
+      // An unknown extension: reported when the file is read, after the usage checks.
+    }
+  }
   return false;
 }
 
