@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs ember's build and test dependencies from Debian packages (skips apt when all are present).
 set -euo pipefail
-packages=(cmake make g++ libgtest-dev libbenchmark-dev libtbb-dev libgmp-dev libcli11-dev lib3mf-dev
+packages=(cmake make g++ libgtest-dev libbenchmark-dev libtbb-dev libgmp-dev libcli11-dev lib3mf-dev zlib1g-dev
           python3 python3-dev pybind11-dev python3-pybind11 python3-numpy)
 missing=()
 for p in "${packages[@]}"; do

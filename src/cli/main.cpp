@@ -13,6 +13,7 @@
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
+#include <new>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,9 +46,13 @@ const char* operation_name(ember::Operation op) {
   return "?";
 }
 
+/// What the command is doing, for the message when memory runs out.
+std::string g_activity;
+
 /// Writes a mesh in the format of out's extension (atomically, privately).
 void write_atomically(const ember::Mesh& mesh, const fs::path& out,
                       std::span<const ember::Provenance> provenance = {}) {
+  g_activity = "writing " + out.string();
   ember::cli::write_file_atomically(ember::write_mesh(mesh, ember::format_from_path(out), provenance), out);
 }
 
@@ -68,6 +73,8 @@ struct BooleanArgs {
   std::string output;
   std::string min_k;  ///< as given (checked after parsing: usage.hpp)
   std::string threads = "0";
+  std::string max_3mf_triangles;   ///< as given; empty: ReadOptions' default
+  std::string max_3mf_instancing;  ///< as given; empty: ReadOptions' default
   bool stats = false;
   bool allow_open = false;
   bool assume_solid = false;
@@ -76,8 +83,10 @@ struct BooleanArgs {
   bool quiet = false;
 };
 
-/// Options from the command line; usage errors (exit 2) name the option and range.
-ember::BooleanOptions boolean_options(ember::Operation& op, const BooleanArgs& a) {
+/// Options from the command line; usage errors (exit 2) name the option and
+/// range. `operands` is the number of operands (a 3MF file may hold several),
+/// or, before the files are read, the number of files (a lower bound).
+ember::BooleanOptions boolean_options(ember::Operation& op, const BooleanArgs& a, std::size_t operands) {
   ember::BooleanOptions options;
   options.threads = ember::cli::parse_int_option("--threads", a.threads, 0, 1 << 16, kThreadsRange);
   options.allow_open = a.allow_open;
@@ -85,8 +94,8 @@ ember::BooleanOptions boolean_options(ember::Operation& op, const BooleanArgs& a
   options.detect_solid = !a.no_solid_check;
   if (a.polygons) options.output = ember::BooleanOptions::Output::Polygons;
   if (a.min_k.empty()) return options;
-  const int n = static_cast<int>(a.inputs.size());
-  const std::string range = "K from 1 to the number of inputs (" + std::to_string(n) + ")";
+  const int n = static_cast<int>(operands);
+  const std::string range = "K from 1 to the number of operands (" + std::to_string(n) + ")";
   if (op != ember::Operation::Union)
     throw ember::cli::UsageError("--min-k applies to 'union' only (the solid inside at least K inputs); " + range);
   options.min_k = ember::cli::parse_int_option("--min-k", a.min_k, 1, n, range);
@@ -94,11 +103,57 @@ ember::BooleanOptions boolean_options(ember::Operation& op, const BooleanArgs& a
   return options;
 }
 
+/// Each object of a 3MF file is an operand, so a file count below 2 or a
+/// --min-k above the file count is only known to be wrong once 3MF files
+/// are read.
+bool has_3mf_input(const BooleanArgs& a) {
+  for (const std::string& in : a.inputs) {
+    try {
+      if (ember::format_from_path(in) == ember::MeshFormat::ThreeMf) return true;
+    } catch (const ember::Error&) {
+      // An unknown extension: reported when the file is read, after the usage checks.
+    }
+  }
+  return false;
+}
+
+void check_operand_count(std::size_t n, const BooleanArgs& a) {
+  if (n >= 2) return;
+  throw ember::cli::UsageError("at least 2 operands are required, but " +
+                               (a.inputs.empty() ? std::string("none were") : "'" + a.inputs[0] + "' holds 1") +
+                               " (each input file is one operand, each object of a 3MF file one)");
+}
+
 int run_boolean(ember::Operation op, const BooleanArgs& a) {
-  ember::BooleanOptions options = boolean_options(op, a);
+  const bool any_3mf = has_3mf_input(a);
+  // Usage errors before any file is read, as far as they are known then.
+  if (any_3mf) {
+    BooleanArgs without_k = a;
+    without_k.min_k.clear();
+    ember::Operation early = op;
+    (void)boolean_options(early, without_k, 0);
+    if (!a.min_k.empty() && op != ember::Operation::Union)
+      (void)boolean_options(early, a, 0);  // the "union only" error
+  } else {
+    check_operand_count(a.inputs.size(), a);
+    ember::Operation early = op;
+    (void)boolean_options(early, a, a.inputs.size());
+  }
   ember::format_from_path(a.output);  // reject an unknown output extension before any work
   std::vector<std::string> read_warnings;
-  const ember::cli::Operands operands = ember::cli::read_operands(a.inputs, &read_warnings);
+  ember::ReadOptions read_options;
+  if (!a.max_3mf_triangles.empty())
+    read_options.max_3mf_triangles =
+        ember::cli::parse_count_option("--max-3mf-triangles", a.max_3mf_triangles, "a whole number from 1");
+  if (!a.max_3mf_instancing.empty())
+    read_options.max_3mf_instancing =
+        ember::cli::parse_count_option("--max-3mf-instancing", a.max_3mf_instancing, "a whole number from 1");
+  const ember::cli::Operands operands = ember::cli::read_operands(a.inputs, &read_warnings, &g_activity, read_options);
+  check_operand_count(operands.meshes.size(), a);
+  ember::BooleanOptions options = boolean_options(op, a, operands.meshes.size());
+  std::size_t triangles = 0;
+  for (const ember::Mesh& m : operands.meshes) triangles += m.triangle_count();
+  g_activity = "the Boolean of " + std::to_string(triangles) + " triangles";
   if (!a.quiet)
     for (const std::string& w : read_warnings) std::fprintf(stderr, "ember: warning: %s\n", w.c_str());
   ember::BooleanResult r;
@@ -169,12 +224,17 @@ int main(int argc, char** argv) {
   std::vector<std::pair<CLI::App*, ember::Operation>> subs;
   for (const Command& c : commands) {
     CLI::App* sub = app.add_subcommand(c.name, c.help);
-    sub->add_option("inputs", args.inputs, "Input meshes (two or more; each object of a 3MF file is one)")
+    sub->add_option("inputs", args.inputs, "Input meshes (two or more operands; each object of a 3MF file is one)")
         ->required()
-        ->expected(2, -1);
+        ->expected(1, -1);  // 2 operands: counted after reading (a 3MF file may hold several)
     sub->add_option("-o,--output", args.output, "Output mesh; format from extension")->required();
-    sub->add_option("--min-k", args.min_k, "union only: keep the solid inside at least K inputs (1..inputs)");
+    sub->add_option("--min-k", args.min_k, "union only: keep the solid inside at least K operands (1..operands)");
     sub->add_option("--threads", args.threads, "Worker threads (0 = all cores; results are identical)");
+    sub->add_option("--max-3mf-triangles", args.max_3mf_triangles,
+                    "Refuse a 3MF file whose components expand to more triangles (default 100000000)");
+    sub->add_option("--max-3mf-instancing", args.max_3mf_instancing,
+                    "Refuse a 3MF file expanding to over 1 million triangles and this many times what it stores "
+                    "(default 1000)");
     sub->add_flag("--stats", args.stats, "Print one JSON object with timing and counts on stderr");
     sub->add_flag("--allow-open", args.allow_open, "Accept inputs that are not closed (warns)");
     sub->add_flag("--quiet", args.quiet, "No warnings and no progress bar on stderr (errors are still printed)");
@@ -214,6 +274,11 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const ember::Error& e) {
     std::fprintf(stderr, "ember: %s\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    // No output was written: results reach the output file only when complete.
+    std::fprintf(stderr, "ember: out of memory%s%s; free memory or use smaller inputs\n",
+                 g_activity.empty() ? "" : " while ", g_activity.c_str());
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ember: unexpected error: %s\n", e.what());

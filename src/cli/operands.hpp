@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "ember/io/mesh_io.hpp"
 #include "ember/mesh.hpp"
 
 namespace ember::cli {
@@ -14,6 +15,10 @@ struct Operands {
   std::vector<std::string> names;
 };
 
-Operands read_operands(const std::vector<std::string>& paths, std::vector<std::string>* warnings = nullptr);
+/// Reads every path; an operand without faces is an ember::Error naming it.
+/// `activity`, when given, is set to "reading PATH" before each file is read
+/// (for the out-of-memory message).
+Operands read_operands(const std::vector<std::string>& paths, std::vector<std::string>* warnings = nullptr,
+                       std::string* activity = nullptr, const ReadOptions& options = {});
 
 }  // namespace ember::cli

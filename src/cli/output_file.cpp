@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <thread>
 
 #include "ember/error.hpp"
@@ -29,15 +30,19 @@ extern "C" void remove_pending_and_die(int sig) {
   ::raise(sig);
 }
 
-/// Blocks SIGINT/SIGTERM while the pending path changes, so the handler
+/// The signals that end the process by default and are sent by users or
+/// terminals (Ctrl-C, Ctrl-\\, a closed terminal, kill): each removes the
+/// pending temporary file first.
+constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+
+/// Blocks the cleanup signals while the pending path changes, so the handler
 /// never sees a half-written name or misses a file that already exists.
 class SignalBlock {
  public:
   SignalBlock() {
     sigset_t set;
     sigemptyset(&set);
-    sigaddset(&set, SIGINT);
-    sigaddset(&set, SIGTERM);
+    for (const int sig : kCleanupSignals) sigaddset(&set, sig);
     ::sigprocmask(SIG_BLOCK, &set, &old_);
   }
   ~SignalBlock() { ::sigprocmask(SIG_SETMASK, &old_, nullptr); }
@@ -55,14 +60,24 @@ std::string system_reason() { return std::strerror(errno); }
 }
 
 /// Refuses to replace anything but a regular file: rename() would silently
-/// swap out a symlink (not its target) or fail late on a directory.
-void check_replaceable(const std::filesystem::path& out) {
+/// swap out a symlink (not its target) or fail late on a directory. A
+/// read-only file is refused too, as other tools refuse to overwrite it.
+/// Returns the mode of the file being replaced (none: there is none).
+std::optional<mode_t> check_replaceable(const std::filesystem::path& out) {
   struct stat st {};
-  if (::lstat(out.c_str(), &st) != 0) return;  // absent (or unreadable: creating the temp file reports why)
-  if (S_ISREG(st.st_mode)) return;
-  const char* kind = S_ISDIR(st.st_mode) ? "a directory" : S_ISLNK(st.st_mode) ? "a symbolic link" : "a special file";
-  fail(out, std::string("exists and is ") + kind +
-                ", not a regular file; refusing to replace it (remove it or choose another -o)");
+  if (::lstat(out.c_str(), &st) != 0) return std::nullopt;  // absent (or unreadable: creating the temp file says why)
+  if (!S_ISREG(st.st_mode)) {
+    const char* kind = S_ISDIR(st.st_mode) ? "a directory" : S_ISLNK(st.st_mode) ? "a symbolic link" : "a special file";
+    fail(out, std::string("exists and is ") + kind +
+                  ", not a regular file; refusing to replace it (remove it or choose another -o)");
+  }
+  // access() is the user's permission; root passes it for any file, so a file
+  // without any write bit counts as read-only for root too.
+  if (::access(out.c_str(), W_OK) != 0 || (st.st_mode & 0222) == 0)
+    fail(out,
+         "exists and is read-only (no write permission); refusing to replace it (make it writable, remove "
+         "it or choose another -o)");
+  return st.st_mode & 07777;
 }
 
 /// Removes the temporary file and forgets it.
@@ -93,12 +108,18 @@ void install_cleanup_handlers() {
   struct sigaction sa {};
   sa.sa_handler = remove_pending_and_die;
   sigemptyset(&sa.sa_mask);
-  ::sigaction(SIGINT, &sa, nullptr);
-  ::sigaction(SIGTERM, &sa, nullptr);
+  for (const int sig : kCleanupSignals) {
+    // Under nohup SIGHUP is ignored on purpose and stays so. (Shells also
+    // ignore SIGINT/SIGQUIT for background jobs; a kill -INT is still meant
+    // to stop ember, as it always has.)
+    struct sigaction old {};
+    if (sig == SIGHUP && ::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    ::sigaction(sig, &sa, nullptr);
+  }
 }
 
 void write_file_atomically(const std::string& bytes, const std::filesystem::path& out) {
-  check_replaceable(out);
+  const std::optional<mode_t> existing_mode = check_replaceable(out);
   const std::filesystem::path dir = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
   std::string name = ".";  // hidden, beside the output; built with += (GCC 12 warns spuriously on "." + string)
   name += out.filename().string();
@@ -114,12 +135,14 @@ void write_file_atomically(const std::string& bytes, const std::filesystem::path
     g_has_pending = 1;
   }
   write_all(fd, bytes, tmp, out);
-  // mkstemp's 0600 is for the time the file is incomplete; the result gets
-  // the mode an ordinary new file would get (0666 minus the umask).
+  // mkstemp's 0600 is for the time the file is incomplete; the result keeps
+  // the mode of the file it replaces, or gets the mode an ordinary new file
+  // would get (0666 minus the umask).
   const mode_t mask = ::umask(0);
   ::umask(mask);
   std::string problem;
-  if (::fchmod(fd, 0666 & ~mask) != 0) problem = "cannot set the file mode: " + system_reason();
+  if (::fchmod(fd, existing_mode ? *existing_mode : 0666 & ~mask) != 0)
+    problem = "cannot set the file mode: " + system_reason();
   if (::close(fd) != 0 && problem.empty()) problem = "write failed: " + system_reason();  // e.g. disk full on NFS
   if (!problem.empty()) {
     discard(tmp);

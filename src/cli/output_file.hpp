@@ -3,13 +3,14 @@
 // file behind: the bytes go to a private temporary file created in the
 // output's folder (O_EXCL, so a planted file or symlink is never followed),
 // which is renamed onto the output only when complete. The temporary file is
-// removed on every failure and on SIGINT/SIGTERM.
+// removed on every failure and on SIGINT, SIGTERM, SIGHUP and SIGQUIT. A
+// replaced file keeps its mode; a read-only one is refused.
 #include <filesystem>
 #include <string>
 
 namespace ember::cli {
 
-/// Installs the SIGINT/SIGTERM handlers that remove a pending temporary file
+/// Installs the SIGINT/SIGTERM/SIGHUP/SIGQUIT handlers that remove a pending temporary file
 /// before the process dies. Call once at start-up.
 void install_cleanup_handlers();
 

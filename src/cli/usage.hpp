@@ -1,6 +1,7 @@
 #pragma once
 // Option values the CLI checks itself, so that every usage error names the
 // option and the accepted range (and exits with 2).
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -15,5 +16,7 @@ struct UsageError : std::runtime_error {
 /// the accepted values for the message ("0 = all cores, or more").
 int parse_int_option(const std::string& option, const std::string& text, long long lo, long long hi,
                      const std::string& range);
+/// Parses a whole number from 1 to 2^64-1 given for `option`.
+std::uint64_t parse_count_option(const std::string& option, const std::string& text, const std::string& range);
 
 }  // namespace ember::cli

@@ -1,5 +1,7 @@
 // File-level entry points: choose the format by extension, read the whole
 // file into memory (the parsers work on one contiguous buffer) and write.
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -22,6 +24,17 @@ std::string read_file(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(path, ec)) throw Error(path.string() + ": is a directory, not a mesh file");
   File f(std::fopen(path.c_str(), "rb"));
   if (!f) throw Error(path.string() + ": cannot open for reading: " + std::strerror(errno));
+  // After following symlinks: a device such as /dev/zero never ends and would
+  // be read until memory runs out. Pipes and FIFOs end when the writer closes.
+  struct stat st {};
+  if (::fstat(::fileno(f.get()), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode)) {
+    const char* kind = S_ISCHR(st.st_mode)    ? "a character device"
+                       : S_ISBLK(st.st_mode)  ? "a block device"
+                       : S_ISSOCK(st.st_mode) ? "a socket"
+                                              : "neither a regular file nor a pipe";
+    throw Error("is " + std::string(kind) + ", not a mesh file; give a regular file, a pipe or a FIFO",
+                {.file = path.string()});
+  }
   std::string data;
   char buf[1 << 16];
   // Size from the file when known, so large files are read with one allocation.
@@ -77,10 +90,12 @@ Mesh read_mesh(const std::filesystem::path& path, std::vector<std::string>* warn
   return read_mesh(data, format, path.string(), warnings);
 }
 
-std::vector<Mesh> read_meshes(const std::filesystem::path& path) {
+std::vector<Mesh> read_meshes(const std::filesystem::path& path) { return read_meshes(path, ReadOptions{}); }
+
+std::vector<Mesh> read_meshes(const std::filesystem::path& path, const ReadOptions& options) {
   const MeshFormat format = format_from_path(path);
   const std::string data = read_file(path);
-  if (format == MeshFormat::ThreeMf) return read_3mf(data, path.string());
+  if (format == MeshFormat::ThreeMf) return read_3mf(data, path.string(), options);
   std::vector<Mesh> meshes;
   meshes.push_back(read_mesh(data, format, path.string()));
   return meshes;
@@ -100,7 +115,16 @@ std::string write_mesh(const Mesh& mesh, MeshFormat format, std::span<const Prov
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path) { write_mesh(mesh, path, {}); }
 
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path, std::span<const Provenance> provenance) {
-  const std::string data = write_mesh(mesh, format_from_path(path), provenance);
+  std::string data;
+  try {
+    data = write_mesh(mesh, format_from_path(path), provenance);
+  } catch (const Error& e) {
+    // Name the file, keeping the fields (vertex, face) of the problem.
+    if (!e.where().file.empty()) throw;
+    ErrorLocation where = e.where();
+    where.file = path.string();
+    throw Error(e.problem(), where);
+  }
   File f(std::fopen(path.c_str(), "wb"));
   if (!f) throw Error(path.string() + ": cannot open for writing: " + std::strerror(errno));
   if (std::fwrite(data.data(), 1, data.size(), f.get()) != data.size())

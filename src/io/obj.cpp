@@ -76,7 +76,8 @@ Mesh read_obj(std::string_view bytes, std::string_view name) {
           face.push_back(static_cast<std::uint32_t>(i - 1));
         } else if (i < 0) {
           const auto n = static_cast<std::int64_t>(mesh.vertices.size());
-          if (-i > n)
+          // i < -n, not -i > n: negating INT64_MIN overflows.
+          if (i < -n)
             s.fail("face index " + std::to_string(i) + " out of range (" + std::to_string(n) +
                    " vertices defined so far)");
           face.push_back(static_cast<std::uint32_t>(n + i));

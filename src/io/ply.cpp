@@ -218,6 +218,8 @@ PlyHeader parse_header(TextScanner& s) {
       if (!s.more_on_line()) s.fail("element '" + std::string(e.name) + "' without a count");
       const std::int64_t n = s.integer("element count");
       if (n < 0) s.fail("negative element count " + std::to_string(n));
+      if (e.name == "vertex" && n > static_cast<std::int64_t>(std::numeric_limits<std::uint32_t>::max()))
+        s.fail("vertex count " + std::to_string(n) + " exceeds the 2^32-1 vertices ember supports");
       e.count = static_cast<std::uint64_t>(n);
       h.elements.push_back(e);
     } else if (kw == "property") {

@@ -214,20 +214,26 @@ class AsciiStlReader {
 }  // namespace
 
 Mesh read_stl(std::string_view bytes, std::string_view name, std::vector<std::string>* warnings) {
-  const bool binary_size_ok =
-      bytes.size() >= 84 && 84 + std::uint64_t{50} * load_u32le(bytes.data() + 80) == bytes.size();
   // A byte-order mark only ever precedes text, never a binary header.
   if (looks_like_ascii(io_detail::skip_bom(bytes)))
     return AsciiStlReader(io_detail::skip_bom(bytes), name, warnings).read();
-  if (binary_size_ok) return read_binary_stl(bytes, name);
   if (bytes.size() < 84)
     fail_in_file(name, "not an STL file: " + std::to_string(bytes.size()) +
                            " bytes is too short for binary STL (84-byte minimum) and it is not ASCII STL");
   const std::uint32_t n = load_u32le(bytes.data() + 80);
-  fail_at_offset(name, 80,
-                 "binary STL header declares " + std::to_string(n) + " triangles, which needs " +
-                     std::to_string(84 + std::uint64_t{50} * n) + " bytes, but the file has " +
-                     std::to_string(bytes.size()) + " bytes (truncated or not an STL file)");
+  const std::uint64_t needed = 84 + std::uint64_t{50} * n;
+  if (needed > bytes.size())
+    fail_at_offset(name, 80,
+                   "binary STL header declares " + std::to_string(n) + " triangles, which needs " +
+                       std::to_string(needed) + " bytes, but the file has only " + std::to_string(bytes.size()) +
+                       " bytes (truncated or not an STL file)");
+  // Some exporters pad the file or append data after the triangles; the
+  // triangles the header declares are complete, so read them and say so.
+  if (needed < bytes.size() && warnings)
+    warnings->push_back(std::string(name) + ": binary STL has " + std::to_string(bytes.size() - needed) +
+                        " bytes after the " + std::to_string(n) + " triangles its header declares (byte " +
+                        std::to_string(needed) + " on); they are ignored");
+  return read_binary_stl(bytes, name);
 }
 
 std::string write_stl(const Mesh& mesh) {

@@ -6,8 +6,10 @@
 // checked, with lib3mf's own message in the ember::Error.
 #include <Model/COM/NMR_DLLInterfaces.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <string>
@@ -15,6 +17,7 @@
 
 #include "ember/error.hpp"
 #include "ember/io/mesh_io.hpp"
+#include "io/threemf_scan.hpp"
 #include "io/writer_support.hpp"
 
 namespace ember {
@@ -76,8 +79,30 @@ struct Affine {
 /// Appends `object` (a mesh, or components referring to further objects) to
 /// `out`, transformed by `to_world`. Components may nest; the depth bound
 /// only guards against a malformed file that lib3mf let through.
+/// The refusal for a file beyond the ReadOptions limits.
+[[noreturn]] void too_large(std::string_view name, const std::string& what) {
+  throw Error(
+      "3MF: " + what +
+          "; refusing to expand it (raise ReadOptions::max_3mf_triangles / max_3mf_instancing, at the "
+          "command line --max-3mf-triangles / --max-3mf-instancing, if the file is trusted and memory suffices)",
+      {.file = std::string(name)});
+}
+
+/// Triangles flattened so far, against the limit (a second guard for files
+/// the scan could not follow).
+struct Budget {
+  std::uint64_t limit = 0, triangles = 0, instances = 0;
+  void take(std::uint64_t n, std::string_view name) {
+    triangles += n;
+    ++instances;
+    if (triangles > limit || instances > limit)
+      too_large(name, "the build items expand to more than " + std::to_string(limit) +
+                          " triangles or object instances (the limit)");
+  }
+};
+
 void flatten(NMR::PLib3MFModelObjectResource* object, const Affine& to_world, Mesh& out, std::string_view name,
-             int depth) {
+             int depth, Budget& budget) {
   if (depth > 64) throw Error(std::string(name) + ": 3MF: components nest more than 64 levels deep (a cycle?)");
   BOOL is_mesh = 0, is_components = 0;
   check(NMR::lib3mf_object_ismeshobject(object, &is_mesh), object, name, "object type query");
@@ -85,6 +110,7 @@ void flatten(NMR::PLib3MFModelObjectResource* object, const Affine& to_world, Me
     DWORD nv = 0, nt = 0;
     check(NMR::lib3mf_meshobject_getvertexcount(object, &nv), object, name, "vertex count");
     check(NMR::lib3mf_meshobject_gettrianglecount(object, &nt), object, name, "triangle count");
+    budget.take(nt, name);
     std::vector<NMR::MODELMESHVERTEX> vertices(nv);
     std::vector<NMR::MODELMESHTRIANGLE> triangles(nt);
     if (nv)
@@ -117,12 +143,38 @@ void flatten(NMR::PLib3MFModelObjectResource* object, const Affine& to_world, Me
     NMR::PLib3MFModelObjectResource* child = nullptr;
     check(NMR::lib3mf_component_getobjectresource(raw, &child), raw, name, "component object");
     const Handle child_handle(child);
-    flatten(child, to_world.after(Affine::from(t)), out, name, depth + 1);
+    flatten(child, to_world.after(Affine::from(t)), out, name, depth + 1, budget);
   }
 }
 
-/// Adds `mesh` to `model` as one mesh object with one build item.
-void add_object(NMR::PLib3MFModel* model, const Mesh& mesh) {
+/// 64-bit FNV-1a over the mesh's coordinates (bit patterns) and indices.
+std::uint64_t content_hash(const Mesh& mesh, std::uint64_t seed) {
+  std::uint64_t h = 0xcbf29ce484222325ull ^ seed;
+  const auto mix = [&h](const void* p, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ static_cast<const unsigned char*>(p)[i]) * 0x100000001b3ull;
+  };
+  mix(mesh.vertices.data(), mesh.vertices.size() * sizeof(Vec3d));
+  mix(mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
+  mix(mesh.face_offsets.data(), mesh.face_offsets.size() * sizeof(std::uint32_t));
+  return h;
+}
+
+/// A UUID (RFC 4122 layout, version 8: custom) made from two hashes, so that
+/// the same meshes always give the same file. lib3mf would otherwise draw
+/// random UUIDs and two identical runs would differ byte for byte.
+std::string derived_uuid(std::uint64_t hi, std::uint64_t lo) {
+  hi = (hi & ~0xf000ull) | 0x8000ull;              // version 8
+  lo = (lo & ~(0xc0ull << 56)) | (0x80ull << 56);  // variant 10
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%08x-%04x-%04x-%04x-%012llx", static_cast<unsigned>(hi >> 32),
+                static_cast<unsigned>((hi >> 16) & 0xffff), static_cast<unsigned>(hi & 0xffff),
+                static_cast<unsigned>(lo >> 48), static_cast<unsigned long long>(lo & 0xffffffffffffull));
+  return buf;
+}
+
+/// Adds `mesh` to `model` as one mesh object with one build item; their
+/// UUIDs derive from the mesh, its position `index` and `file_hash`.
+void add_object(NMR::PLib3MFModel* model, const Mesh& mesh, std::size_t index, std::uint64_t file_hash) {
   io_detail::check_mesh_for_writing(mesh, "3MF");
   std::vector<NMR::MODELMESHVERTEX> vertices;
   vertices.reserve(mesh.vertices.size());
@@ -150,11 +202,34 @@ void add_object(NMR::PLib3MFModel* model, const Mesh& mesh) {
   check(NMR::lib3mf_model_addbuilditem(model, object_raw, nullptr, &item_raw), model, "output",
         "adding the build item");
   const Handle item(item_raw);
+  const std::uint64_t h = content_hash(mesh, index) ^ file_hash;
+  check(NMR::lib3mf_object_setuuidutf8(object_raw, derived_uuid(h, h * 0x9E3779B97F4A7C15ull + 1).c_str()), object_raw,
+        "output", "setting the object UUID");
+  check(NMR::lib3mf_builditem_setuuidutf8(item_raw, derived_uuid(h, h * 0x9E3779B97F4A7C15ull + 2).c_str()), item_raw,
+        "output", "setting the build item UUID");
 }
 
 }  // namespace
 
 std::vector<Mesh> read_3mf(std::string_view bytes, std::string_view name) {
+  return read_3mf(bytes, name, ReadOptions{});
+}
+
+std::vector<Mesh> read_3mf(std::string_view bytes, std::string_view name, const ReadOptions& options) {
+  // lib3mf resolves components instance by instance (exponential time in the
+  // nesting depth of a component bomb), so the expansion is sized first.
+  if (const auto e = io_detail::scan_3mf_expansion(bytes)) {
+    const std::string sizes = "the build items expand to " + std::to_string(e->expanded_triangles) + " triangles in " +
+                              std::to_string(e->instances) + " object instances (the file stores " +
+                              std::to_string(e->stored_triangles) + " triangles)";
+    if (e->expanded_triangles > options.max_3mf_triangles || e->instances > options.max_3mf_triangles)
+      too_large(name, sizes + ", more than the limit of " + std::to_string(options.max_3mf_triangles));
+    const std::uint64_t stored = std::max<std::uint64_t>(e->stored_triangles, 1);
+    const std::uint64_t expanded = std::max(e->expanded_triangles, e->instances);
+    if (expanded > 1'000'000 && expanded / stored >= options.max_3mf_instancing)
+      too_large(name, sizes + ", more than " + std::to_string(options.max_3mf_instancing) +
+                          " times what it stores (components nested in components)");
+  }
   const Handle model = new_model();
   NMR::PLib3MFModelReader* reader_raw = nullptr;
   check(NMR::lib3mf_model_queryreader(model.get(), "3mf", &reader_raw), model.get(), name, "creating a reader");
@@ -169,6 +244,7 @@ std::vector<Mesh> read_3mf(std::string_view bytes, std::string_view name) {
   check(NMR::lib3mf_model_getbuilditems(model.get(), &items_raw), model.get(), name, "listing build items");
   const Handle items(items_raw);
   std::vector<Mesh> meshes;
+  Budget budget{options.max_3mf_triangles};
   for (BOOL more = 0; NMR::lib3mf_builditemiterator_movenext(items_raw, &more) == 0 && more;) {
     NMR::PLib3MFModelBuildItem* item_raw = nullptr;
     check(NMR::lib3mf_builditemiterator_getcurrent(items_raw, &item_raw), items_raw, name, "reading a build item");
@@ -179,7 +255,7 @@ std::vector<Mesh> read_3mf(std::string_view bytes, std::string_view name) {
     check(NMR::lib3mf_builditem_getobjectresource(item_raw, &object_raw), item_raw, name, "build item object");
     const Handle object(object_raw);
     Mesh mesh;
-    flatten(object_raw, Affine::from(t), mesh, name, 0);
+    flatten(object_raw, Affine::from(t), mesh, name, 0, budget);
     meshes.push_back(std::move(mesh));
   }
   if (meshes.empty()) throw Error(std::string(name) + ": the 3MF file has no build items, so no object to read");
@@ -191,7 +267,11 @@ std::string write_3mf(const Mesh& mesh) { return write_3mf(std::span<const Mesh>
 std::string write_3mf(std::span<const Mesh> meshes) {
   const Handle model = new_model();
   check(NMR::lib3mf_model_setunit(model.get(), NMR::MODELUNIT_MILLIMETER), model.get(), "output", "setting the unit");
-  for (const Mesh& mesh : meshes) add_object(model.get(), mesh);
+  std::uint64_t file_hash = 0x3a5f;
+  for (std::size_t i = 0; i < meshes.size(); ++i) file_hash = file_hash * 31 + content_hash(meshes[i], 0x77 + i);
+  for (std::size_t i = 0; i < meshes.size(); ++i) add_object(model.get(), meshes[i], i, file_hash);
+  check(NMR::lib3mf_model_setbuilduuidutf8(model.get(), derived_uuid(file_hash, ~file_hash).c_str()), model.get(),
+        "output", "setting the build UUID");
   NMR::PLib3MFModelWriter* writer_raw = nullptr;
   check(NMR::lib3mf_model_querywriter(model.get(), "3mf", &writer_raw), model.get(), "output", "creating a writer");
   const Handle writer(writer_raw);

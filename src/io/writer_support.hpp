@@ -3,6 +3,7 @@
 // that the mesh is well-formed before any bytes are produced, so a broken
 // mesh ends in an ember::Error instead of a file that other tools misread.
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -44,6 +45,20 @@ inline void check_mesh_for_writing(const Mesh& mesh, std::string_view format) {
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     if (mesh.face_offsets[f + 1] < mesh.face_offsets[f] + 3)
       fail("face " + std::to_string(f) + " has fewer than 3 vertices");
+  }
+  // A nan or inf would be written as text no reader (ember's included) accepts.
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+    const Vec3d& p = mesh.vertices[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      std::string xyz;
+      for (double c : {p.x, p.y, p.z}) {
+        if (!xyz.empty()) xyz += ' ';
+        append_real(xyz, c);
+      }
+      throw Error("cannot write " + std::string(format) + ": vertex " + std::to_string(v) + " (" + xyz +
+                      ") has a non-finite coordinate; only finite coordinates can be written",
+                  {.vertex = v});
+    }
   }
   for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
     if (mesh.indices[i] >= mesh.vertices.size())

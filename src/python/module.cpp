@@ -12,8 +12,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "ember/boolean.hpp"
@@ -29,6 +31,54 @@ std::string shape_of(const py::array& a) {
   for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
   return s + (a.ndim() == 1 ? ",)" : ")");
 }
+
+/// The faces of `faces_any` (integers of type Index) into `m`, each index
+/// checked against the vertex count and reported as given when out of range.
+template <class Index>
+void add_faces(ember::Mesh& m, const py::array& faces_any, py::ssize_t vertex_count, const std::string& what) {
+  const auto f = py::array_t<Index, py::array::c_style | py::array::forcecast>::ensure(faces_any);
+  if (!f || f.ndim() != 2 || (f.shape(0) > 0 && f.shape(1) < 3))
+    throw ember::Error(what + ": faces must have shape (m, 3) (or (m, k >= 3) polygons), got shape " +
+                       shape_of(faces_any));
+  const auto fr = f.template unchecked<2>();
+  const py::ssize_t k = f.shape(1);
+  m.indices.reserve(static_cast<std::size_t>(f.shape(0) * k));
+  m.face_offsets.reserve(static_cast<std::size_t>(f.shape(0)) + 1);
+  for (py::ssize_t i = 0; i < f.shape(0); ++i) {
+    for (py::ssize_t j = 0; j < k; ++j) {
+      const Index id = fr(i, j);
+      bool negative = false;
+      if constexpr (std::is_signed_v<Index>) negative = id < 0;
+      if (negative || static_cast<std::uint64_t>(id) >= static_cast<std::uint64_t>(vertex_count))
+        throw ember::Error(what + ": face " + std::to_string(i) + " uses vertex index " + std::to_string(id) +
+                           ", but there are " + std::to_string(vertex_count) + " vertices");
+      m.indices.push_back(static_cast<std::uint32_t>(id));
+    }
+    m.face_offsets.push_back(static_cast<std::uint32_t>(m.indices.size()));
+  }
+}
+
+/// A keyword option that must be a bool (or an int used as one).
+bool bool_option(py::handle value, const std::string& name) {
+  if (!py::isinstance<py::int_>(value))
+    throw py::type_error(name + " must be a bool, got " + std::string(py::str(py::type::of(value).attr("__name__"))));
+  return PyObject_IsTrue(value.ptr()) == 1;
+}
+
+/// A keyword option that must be a whole number in [lo, hi].
+int int_option(py::handle value, const std::string& name, long long lo, long long hi, const std::string& range) {
+  if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value))
+    throw py::type_error(name + " must be an int (" + range + "), got " +
+                         std::string(py::str(py::type::of(value).attr("__name__"))));
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+  if (overflow != 0 || v < lo || v > hi)
+    throw py::value_error(name + " must be " + range + ", got " + std::string(py::str(value)));
+  return static_cast<int>(v);
+}
+
+/// A path given as str, bytes or os.PathLike (pathlib.Path), as a str.
+std::string path_arg(py::handle path) { return py::module_::import("os").attr("fsdecode")(path).cast<std::string>(); }
 
 /// One operand from Python: a (vertices, faces) pair or an object with
 /// .vertices and .faces. `what` names it in error messages.
@@ -53,28 +103,15 @@ ember::Mesh to_mesh(py::handle obj, const std::string& what) {
   const py::array f_any = py::array::ensure(faces);
   if (!f_any || (f_any.size() > 0 && f_any.dtype().kind() != 'i' && f_any.dtype().kind() != 'u'))
     throw ember::Error(what + ": faces must be an integer array of shape (m, 3) (or (m, k) polygons)");
-  const auto f = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(f_any);
-  if (f.ndim() != 2 || (f.shape(0) > 0 && f.shape(1) < 3))
-    throw ember::Error(what + ": faces must have shape (m, 3) (or (m, k >= 3) polygons), got shape " + shape_of(f));
-
   ember::Mesh m;
   const auto vr = v.unchecked<2>();
   m.vertices.resize(static_cast<std::size_t>(v.shape(0)));
   for (py::ssize_t i = 0; i < v.shape(0); ++i) m.vertices[static_cast<std::size_t>(i)] = {vr(i, 0), vr(i, 1), vr(i, 2)};
-  const auto fr = f.unchecked<2>();
-  const py::ssize_t k = f.shape(1);
-  m.indices.reserve(static_cast<std::size_t>(f.shape(0) * k));
-  m.face_offsets.reserve(static_cast<std::size_t>(f.shape(0)) + 1);
-  for (py::ssize_t i = 0; i < f.shape(0); ++i) {
-    for (py::ssize_t j = 0; j < k; ++j) {
-      const std::int64_t id = fr(i, j);
-      if (id < 0 || id >= v.shape(0))
-        throw ember::Error(what + ": face " + std::to_string(i) + " uses vertex index " + std::to_string(id) +
-                           ", but there are " + std::to_string(v.shape(0)) + " vertices");
-      m.indices.push_back(static_cast<std::uint32_t>(id));
-    }
-    m.face_offsets.push_back(static_cast<std::uint32_t>(m.indices.size()));
-  }
+  // uint64 indices above 2^63 would wrap as int64: read them as they are.
+  if (f_any.size() > 0 && f_any.dtype().kind() == 'u' && f_any.dtype().itemsize() == 8)
+    add_faces<std::uint64_t>(m, f_any, v.shape(0), what);
+  else
+    add_faces<std::int64_t>(m, f_any, v.shape(0), what);
   return m;
 }
 
@@ -134,21 +171,23 @@ py::tuple run_boolean(ember::Operation op, const py::args& meshes, const py::kwa
   for (const auto& [key, value] : kwargs) {
     const std::string k = py::str(key);
     if (k == "threads")
-      options.threads = value.cast<int>();
+      options.threads = int_option(value, k, 0, 1 << 16, "0 (all cores) or a number of threads up to 65536");
     else if (k == "allow_open")
-      options.allow_open = value.cast<bool>();
+      options.allow_open = bool_option(value, k);
     else if (k == "assume_solid")
-      options.all_solid = value.cast<bool>();
+      options.all_solid = bool_option(value, k);
     else if (k == "detect_solid")
-      options.detect_solid = value.cast<bool>();
+      options.detect_solid = bool_option(value, k);
     else if (k == "return_provenance")
-      want_provenance = value.cast<bool>();
+      want_provenance = bool_option(value, k);
     else if (k == "return_stats")
-      want_stats = value.cast<bool>();
+      want_stats = bool_option(value, k);
     else if (k == "min_k" && op == ember::Operation::Union) {
       if (!value.is_none()) {
         op = ember::Operation::AtLeastK;
-        options.min_k = value.cast<int>();
+        const auto n = static_cast<long long>(meshes.size());
+        options.min_k =
+            int_option(value, k, 1, std::max(n, 1LL), "from 1 to the number of meshes (" + std::to_string(n) + ")");
       }
     } else {
       throw py::type_error("unexpected keyword argument '" + k +
@@ -219,7 +258,8 @@ PYBIND11_MODULE(ember, m) {
 
   m.def(
       "read",
-      [](const std::string& path) {
+      [](py::handle path_like) {
+        const std::string path = path_arg(path_like);
         ember::Mesh mesh;
         {
           py::gil_scoped_release release;
@@ -232,7 +272,8 @@ PYBIND11_MODULE(ember, m) {
       "(.obj .stl .off .ply .3mf). Polygons are fan-triangulated.");
   m.def(
       "read_all",
-      [](const std::string& path) {
+      [](py::handle path_like) {
+        const std::string path = path_arg(path_like);
         std::vector<ember::Mesh> meshes;
         {
           py::gil_scoped_release release;
@@ -245,7 +286,8 @@ PYBIND11_MODULE(ember, m) {
       py::arg("path"), "read_all(path) -> [(vertices, faces), ...]: every object of a 3MF file (one per build item).");
   m.def(
       "write",
-      [](const std::string& path, py::handle mesh, py::object provenance) {
+      [](py::handle path_like, py::handle mesh, py::object provenance) {
+        const std::string path = path_arg(path_like);
         const ember::Mesh m = to_mesh(mesh, "mesh");
         std::vector<ember::Provenance> sources;
         if (!provenance.is_none()) {

@@ -126,6 +126,7 @@ TEST(CliOutputFile, NewOutputGetsTheModeFromTheUmask) {
   write_two_boxes(dir);
   const std::string a = "a.obj", b = "b.obj";
   for (const mode_t mask : {mode_t{022}, mode_t{027}}) {
+    fs::remove(dir / "out.obj");       // a new file (a replaced one keeps its mode)
     const mode_t old = ::umask(mask);  // inherited by the CLI's process
     const RunResult r = run_cli(dir, {"union", a, b, "-o", "out.obj"});
     ::umask(old);
@@ -140,11 +141,12 @@ TEST(CliOutputFile, SignalWhileTheTemporaryFileExistsRemovesIt) {
   TempDir dir;
   write_two_boxes(dir);
   const std::string a = "a.obj", b = "b.obj";
-  for (const char* sig : {"TERM", "INT"}) {
+  for (const char* sig : {"TERM", "INT", "HUP", "QUIT"}) {
     SCOPED_TRACE(sig);
     // EMBER_TEST_HOLD_TEMP_MS keeps the finished temporary file for 20 s
     // before the rename; the signal arrives while it is held.
-    std::string cmd = "cd " + shell_quote(dir.work().string()) + " && (EMBER_TEST_HOLD_TEMP_MS=20000 " +
+    // ulimit -c 0: SIGQUIT's default action would leave a core file.
+    std::string cmd = "cd " + shell_quote(dir.work().string()) + " && (ulimit -c 0; EMBER_TEST_HOLD_TEMP_MS=20000 " +
                       shell_quote(cli_path()) + " union a.obj b.obj -o out.obj & pid=$!; " +
                       "for i in $(seq 100); do ls -a | grep -q ember- && break; sleep 0.1; done; " +
                       "ls -a | grep -c ember- > " + shell_quote((dir.io() / "seen.txt").string()) + "; kill -" + sig +
@@ -194,7 +196,7 @@ TEST(CliUsage, BadValuesNameTheOptionAndTheAcceptedRange) {
   };
   const std::vector<Case> cases = {
       {{"union", a, b, "-o", "o.obj", "--min-k", "3"},
-       "ember: --min-k: '3' is out of range; accepted: K from 1 to the number of inputs (2)"},
+       "ember: --min-k: '3' is out of range; accepted: K from 1 to the number of operands (2)"},
       {{"union", a, b, "-o", "o.obj", "--min-k", "0"}, "--min-k: '0' is out of range; accepted: K from 1 to"},
       {{"union", a, b, "-o", "o.obj", "--min-k", "two"}, "--min-k: 'two' is not a whole number; accepted: K from 1"},
       {{"xor", a, b, "-o", "o.obj", "--min-k", "1"}, "--min-k applies to 'union' only"},

@@ -1,8 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <thread>
 
 #include "ember/io/mesh_io.hpp"
 #include "support/io_files.hpp"
@@ -67,6 +71,19 @@ TEST(MeshIo, MissingFileAndDirectoryAreNamed) {
   EXPECT_ERROR_HAS(read_mesh(dir.path() / "d.stl"), "d.stl", "directory");
 }
 
+TEST(MeshIo, DevicesAreRefusedButFifosAreRead) {
+  TempDir dir;
+  fs::create_symlink("/dev/zero", dir.path() / "zero.stl");
+  EXPECT_ERROR_HAS(read_mesh(dir.path() / "zero.stl"), "zero.stl", "character device", "not a mesh file");
+  EXPECT_ERROR_HAS(read_meshes(dir.path() / "zero.stl"), "zero.stl", "character device");
+  const fs::path fifo = dir.path() / "pipe.obj";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::thread writer([&] { std::ofstream(fifo) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"; });
+  const Mesh m = read_mesh(fifo);
+  writer.join();
+  EXPECT_EQ(m.face_count(), 1u);
+}
+
 TEST(MeshIo, WriteFailureThrows) {
   TempDir dir;
   EXPECT_ERROR_HAS(write_mesh(test::cube_quads(), dir.path() / "missing_dir" / "x.obj"), "x.obj", "cannot open");
@@ -87,6 +104,32 @@ TEST(MeshIo, WritersRejectMalformedMeshes) {
   two.add_vertex({1, 0, 0});
   two.add_face({0, 1});
   EXPECT_ERROR_HAS(write_obj(two), "fewer than 3");
+}
+
+TEST(MeshIo, WritersRejectNonFiniteCoordinates) {
+  const auto dir = fs::temp_directory_path() / ("ember_nonfinite_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+    Mesh m = test::cube_quads();
+    m.vertices[3].y = bad;
+    for (MeshFormat f : {MeshFormat::Obj, MeshFormat::Off, MeshFormat::Ply, MeshFormat::Stl, MeshFormat::ThreeMf}) {
+      EXPECT_ERROR_HAS(write_mesh(m, f), "vertex 3", "non-finite");
+      try {
+        (void)write_mesh(m, f);
+      } catch (const Error& e) {
+        EXPECT_EQ(e.where().vertex, std::optional<std::size_t>(3));
+      }
+    }
+    for (const char* name : {"m.obj", "m.off", "m.ply", "m.stl", "m.3mf"}) {
+      EXPECT_ERROR_HAS(write_mesh(m, dir / name), (dir / name).string(), "vertex 3", "non-finite");
+      EXPECT_FALSE(fs::exists(dir / name)) << name;
+    }
+  }
+  Mesh out_of_range = test::cube_quads();
+  out_of_range.indices[0] = 8;
+  EXPECT_ERROR_HAS(write_mesh(out_of_range, dir / "r.obj"), "r.obj", "index 8", "out of range");
+  EXPECT_FALSE(fs::exists(dir / "r.obj"));
+  fs::remove_all(dir);
 }
 
 TEST(MeshIo, ReadMeshDispatchesOnExtension) {

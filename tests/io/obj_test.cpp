@@ -99,5 +99,18 @@ TEST(Obj, EmptyInputIsAnEmptyMesh) {
   EXPECT_TRUE(m.vertices.empty());
 }
 
+TEST(Obj, ExtremeFaceIndicesAreErrorsWithTheValueAndLine) {
+  const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  // The most negative int64 must not wrap around to a valid index.
+  EXPECT_ERROR_HAS(read_obj(v + "f 1 2 -9223372036854775808\n", "min.obj"), "min.obj:4:", "-9223372036854775808",
+                   "out of range");
+  EXPECT_ERROR_HAS(read_obj(v + "f 1 2 9223372036854775807\n", "max.obj"), "max.obj:4:", "9223372036854775807",
+                   "out of range");
+  EXPECT_ERROR_HAS(read_obj(v + "f 1 2 -99999999999999999999\n", "big.obj"), "big.obj:4:", "-99999999999999999999",
+                   "out of range");
+  EXPECT_ERROR_HAS(read_obj(v + "f 1 2 4294967297\n", "wrap.obj"), "wrap.obj:4:", "4294967297", "out of range");
+  EXPECT_ERROR_HAS(read_obj(v + "f 1 2 -4\n", "neg.obj"), "neg.obj:4:", "-4", "out of range");
+}
+
 }  // namespace
 }  // namespace ember

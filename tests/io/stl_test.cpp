@@ -93,11 +93,32 @@ TEST(Stl, AsciiWithSeveralSolidsAndUppercaseKeywords) {
 TEST(Stl, BinaryErrorsGiveByteOffsets) {
   std::string bytes = binary_stl({{0, 0, 0, 1, 0, 0, 0, 1, 0}, {1, 0, 0, 1, 1, 0, 0, 1, 0}});
   EXPECT_ERROR_HAS(read_stl(bytes.substr(0, bytes.size() - 7), "cut.stl"), "cut.stl: byte 80:", "declares 2 triangles",
-                   "184 bytes", "177 bytes");
+                   "184 bytes", "has only 177 bytes");
   const float nan = std::numeric_limits<float>::quiet_NaN();
   std::memcpy(bytes.data() + 84 + 50 + 12 + 12 + 4, &nan, 4);  // triangle 1, corner 1, y
   EXPECT_ERROR_HAS(read_stl(bytes, "nan.stl"), "nan.stl: byte 162:", "triangle 1 corner 1", "non-finite y coordinate");
   EXPECT_ERROR_HAS(read_stl("garbage", "tiny.stl"), "tiny.stl", "too short");
+}
+
+TEST(Stl, BinaryWithTrailingBytesIsReadWithAWarning) {
+  const std::string exact = binary_stl({{0, 0, 0, 1, 0, 0, 0, 1, 0}, {1, 0, 0, 1, 1, 0, 0, 1, 0}});
+  for (const std::string& tail :
+       {std::string(1, '\0'), std::string(49, 'x'), std::string(50, '\0'), std::string(1000, '\xff')}) {
+    std::vector<std::string> warnings;
+    const Mesh m = read_stl(exact + tail, "long.stl", &warnings);
+    EXPECT_EQ(m.face_count(), 2u);
+    EXPECT_EQ(m.vertices.size(), 4u);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(
+        warnings[0].find("long.stl: binary STL has " + std::to_string(tail.size()) + " bytes after the 2 triangles"),
+        std::string::npos)
+        << warnings[0];
+    EXPECT_EQ(warnings[0].find("truncated"), std::string::npos) << warnings[0];
+    EXPECT_EQ(read_stl(exact + tail, "long.stl").face_count(), 2u);  // no warnings list: still read
+  }
+  std::vector<std::string> none;
+  EXPECT_EQ(read_stl(exact, "exact.stl", &none).face_count(), 2u);
+  EXPECT_TRUE(none.empty());
 }
 
 TEST(Stl, AsciiWithoutEndsolidIsReadWithAWarning) {

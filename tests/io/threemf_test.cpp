@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <unistd.h>
 
 #include "ember/boolean.hpp"
@@ -12,6 +14,11 @@
 
 namespace ember {
 namespace {
+
+std::string file_bytes(const std::filesystem::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
 
 /// Faces fan-triangulated, as 3MF stores them.
 Mesh triangulated(const Mesh& m) {
@@ -80,6 +87,24 @@ TEST(ThreeMf, FileFunctionsFollowTheExtension) {
   const BooleanResult r = boolean({read_mesh(dir / "torus.3mf"), sphere}, Operation::Union);
   EXPECT_GT(r.mesh.face_count(), 0u);
   EXPECT_TRUE(r.warnings.empty());
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ThreeMf, OutputIsTheSameBytesForTheSameMeshes) {
+  const Mesh torus = shapes::torus(1.0, 0.35, 32, 16);
+  const std::string first = write_3mf(torus);
+  EXPECT_EQ(write_3mf(torus), first);
+  const std::vector<Mesh> two{test::cube_quads(), torus};
+  EXPECT_EQ(write_3mf(two), write_3mf(two));
+  // Different content, different UUIDs; every UUID of a file is distinct.
+  const std::string other = write_3mf(test::cube_quads());
+  EXPECT_NE(other, first);
+  EXPECT_TRUE(same_up_to_3mf_rounding(read_mesh(first, MeshFormat::ThreeMf, "t.3mf"), torus));
+  const auto dir = std::filesystem::temp_directory_path() / ("ember_3mf_det_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  write_mesh(torus, dir / "a.3mf");
+  write_mesh(torus, dir / "b.3mf");
+  EXPECT_EQ(file_bytes(dir / "a.3mf"), file_bytes(dir / "b.3mf"));
   std::filesystem::remove_all(dir);
 }
 

@@ -101,6 +101,37 @@ class Booleans(unittest.TestCase):
         with self.assertRaises(TypeError):
             ember.difference(self.a, self.b, min_k=2)  # min_k is a union option
 
+    def test_option_values_of_the_wrong_kind_or_range_name_the_argument(self):
+        for kwargs, error, words in (
+            ({"threads": 2**40}, ValueError, "threads"),
+            ({"threads": -1}, ValueError, "threads"),
+            ({"threads": "a"}, TypeError, "threads"),
+            ({"threads": 1.0}, TypeError, "threads"),
+            ({"min_k": 1.5}, TypeError, "min_k"),
+            ({"min_k": 3}, ValueError, "min_k"),
+            ({"min_k": 0}, ValueError, "min_k"),
+            ({"allow_open": "yes"}, TypeError, "allow_open"),
+            ({"return_stats": None}, TypeError, "return_stats"),
+        ):
+            with self.subTest(kwargs=kwargs):
+                with self.assertRaises(error) as e:
+                    ember.union(self.a, self.b, **kwargs)
+                self.assertIn(words, str(e.exception))
+                self.assertNotIn("Unable to cast", str(e.exception))
+        v, f = ember.union(self.a, self.b, threads=2, min_k=2, allow_open=False)
+        self.assertAlmostEqual(volume((v, f)), 1.0)
+
+    def test_uint64_face_index_is_reported_as_given(self):
+        v, f = self.b
+        big = f.astype(np.uint64)
+        big[2, 1] = 2**63 + 7
+        with self.assertRaises(ember.Error) as e:
+            ember.union(self.a, (v, big))
+        self.assertIn(str(2**63 + 7), str(e.exception))
+        self.assertIn("face 2", str(e.exception))
+        ok = ember.union(self.a, (v, f.astype(np.uint64)))
+        self.assertAlmostEqual(volume(ok), 15.0)
+
     def test_open_input_is_allowed_on_request_with_a_warning(self):
         v, f = self.b
         with warnings.catch_warnings(record=True) as caught:
@@ -163,6 +194,30 @@ class Files(unittest.TestCase):
 
     def path(self, name):
         return os.path.join(self.dir.name, name)
+
+    def test_paths_may_be_path_like(self):
+        import pathlib
+
+        p = pathlib.Path(self.dir.name) / "cube.ply"
+        ember.write(p, self.mesh)
+        v, f = ember.read(p)
+        self.assertEqual(f.shape, (12, 3))
+        self.assertEqual(len(ember.read_all(p)), 1)
+        v2, _ = ember.read(os.fsencode(str(p)))  # bytes paths too
+        self.assertTrue(np.array_equal(v, v2))
+        with self.assertRaises(TypeError):
+            ember.read(42)
+
+    def test_write_refuses_non_finite_coordinates(self):
+        v, f = self.mesh
+        bad = v.copy()
+        bad[3, 1] = math.nan
+        for ext in ("obj", "stl", "off", "ply", "3mf"):
+            with self.subTest(ext=ext):
+                p = self.path("bad." + ext)
+                with self.assertRaisesRegex(ember.Error, "vertex 3.*non-finite"):
+                    ember.write(p, (bad, f))
+                self.assertFalse(os.path.exists(p))
 
     def test_every_format_round_trips(self):
         for ext in ("obj", "stl", "off", "ply", "3mf"):

@@ -6,6 +6,7 @@
 // Every malformed input ends in an ember::Error naming the file and the line
 // (text formats) or byte offset (binary formats) and what was wrong; a reader
 // never returns a mesh that silently differs from the file.
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -18,6 +19,21 @@ namespace ember {
 
 enum class MeshFormat { Obj, Stl, Off, Ply, ThreeMf };
 
+/// Limits a reader applies before it builds a mesh, so that a small file
+/// cannot ask for unbounded memory or time.
+struct ReadOptions {
+  /// 3MF: components let an object hold transformed copies of other
+  /// objects, which may hold copies again, so a 1 KB file can describe
+  /// billions of triangles. A file whose build items expand (all components
+  /// resolved) to more than this many triangles, or object instances, is
+  /// refused before lib3mf resolves them. CLI: --max-3mf-triangles.
+  std::uint64_t max_3mf_triangles = 100'000'000;
+  /// 3MF: a file whose build items expand to more than 1 million triangles
+  /// is refused when that is more than this many times the triangles the
+  /// file stores (copies of copies: a component bomb). CLI: --max-3mf-instancing.
+  std::uint64_t max_3mf_instancing = 1000;
+};
+
 /// Format chosen by file extension (case-insensitive); throws ember::Error for
 /// an unknown extension, listing the supported ones.
 MeshFormat format_from_path(const std::filesystem::path& path);
@@ -29,6 +45,8 @@ Mesh read_mesh(const std::filesystem::path& path);
 /// Reads every mesh of a file: one per build item of a 3MF file, the single
 /// mesh of any other format.
 std::vector<Mesh> read_meshes(const std::filesystem::path& path);
+/// As above with limits for a 3MF file's component expansion.
+std::vector<Mesh> read_meshes(const std::filesystem::path& path, const ReadOptions& options);
 /// As above; tolerated oddities of the file (an ASCII STL without 'endsolid')
 /// are appended to `warnings` as "FILE: what" instead of being an error.
 Mesh read_mesh(const std::filesystem::path& path, std::vector<std::string>* warnings);
@@ -56,6 +74,9 @@ Mesh read_ply(std::string_view bytes, std::string_view name);
 /// components' transforms applied. Coordinates are taken as they are, in the
 /// file's unit; colors, materials and other extensions are ignored.
 std::vector<Mesh> read_3mf(std::string_view bytes, std::string_view name);
+/// As above; a file that expands beyond `options`' limits is an ember::Error
+/// that names the limits and how to raise them.
+std::vector<Mesh> read_3mf(std::string_view bytes, std::string_view name, const ReadOptions& options);
 /// Reads in-memory bytes in the given format (3MF: exactly one object; warnings: as for read_stl).
 Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name,
                std::vector<std::string>* warnings = nullptr);
@@ -78,7 +99,9 @@ std::string write_ply(const Mesh& mesh, std::span<const Provenance> provenance =
 /// 3MF with one object and one build item, unit millimeter; faces
 /// fan-triangulated. lib3mf 1.x keeps coordinates as floats and writes them
 /// with 6 decimals, so they move by up to 1e-6 (in mm: 1 nm) — fine for
-/// printing; use OBJ, OFF or PLY for bit-exact results.
+/// printing; use OBJ, OFF or PLY for bit-exact results. The UUIDs 3MF
+/// requires are derived from the content, so the same meshes always give the
+/// same bytes.
 std::string write_3mf(const Mesh& mesh);
 /// 3MF with one object and build item per mesh (read back by read_3mf as
 /// separate meshes, by the CLI as separate operands).
