@@ -10,8 +10,6 @@ namespace {
 
 using Op = Operation;
 
-bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
 /// An L-shaped prism whose two caps are concave hexagons (one face each).
 Mesh l_prism() {
   Mesh m;
