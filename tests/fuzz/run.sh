@@ -9,13 +9,17 @@ set -euo pipefail
 target=$1 ext=$2 seconds=$3 work=$4
 shift 4
 mkdir -p "$work/seeds" "$work/corpus"
+# The whole list is read before it is cut: `find | sort | head` would let
+# head's early exit kill sort with SIGPIPE, which pipefail turns into a
+# failed run whenever a folder holds more than 64 such files.
 for d in "$@"; do
   [[ -d $d ]] || continue
-  find "$d" -type f -iname "*.$ext" -size -64k 2>/dev/null | sort | head -64 | while read -r f; do
-    cp "$f" "$work/seeds/$(echo "$f" | tr '/' '_')"
+  mapfile -t files < <(find "$d" -type f -iname "*.$ext" -size -64k 2>/dev/null | sort)
+  for f in "${files[@]:0:64}"; do
+    cp "$f" "$work/seeds/seed${f//\//_}"
   done
 done
-echo "seeds: $(ls "$work/seeds" | wc -l) files"
+echo "seeds: $(find "$work/seeds" -type f | wc -l) files"
 cd "$work"
 # lib3mf's libzip leaks a few hundred bytes on every package it opens (not
 # ember's memory, and nothing ember can free): leaks are not findings there.
