@@ -27,6 +27,7 @@
 #include "core/proof/prove.hpp"
 #include "core/route/route.hpp"
 #include "core/route/solve_setup.hpp"
+#include "ember/csg.hpp"
 #include "ember/error.hpp"
 
 namespace ember {
@@ -121,10 +122,10 @@ void record_output(core::BuiltOutput&& out, BooleanResult& result) {
 /// Stages 2 to 4 on a non-empty input: the solve's set-up, the proof (with
 /// the solid path beside it where it can run), the route. Fills the proof's
 /// part of the result and its time.
-core::RouteResult solve(core::PreparedInput& in, Operation op, const BooleanOptions& options, int threads,
-                        tbb::task_arena& arena, BooleanResult& result, Clock::time_point& proved) {
+core::RouteResult solve(core::PreparedInput& in, Operation op, const Csg* expression, const BooleanOptions& options,
+                        int threads, tbb::task_arena& arena, BooleanResult& result, Clock::time_point& proved) {
   std::unique_ptr<core::SolveSetup> setup;
-  arena.execute([&] { setup = core::set_up_solve(in, op, options); });
+  arena.execute([&] { setup = core::set_up_solve(in, op, expression, options); });
   for (std::size_t o = 0; o < setup->ctx.solid.size(); ++o)
     if (setup->ctx.solid[o]) result.stats.operands[o].solid = SolidStatus::Promised;
   std::optional<core::SolidRoute> speculative;
@@ -151,13 +152,34 @@ core::RouteResult solve(core::PreparedInput& in, Operation op, const BooleanOpti
   return route;
 }
 
-}  // namespace
+/// The expression's own preconditions (ember/csg.hpp): it uses exactly the
+/// operands given, and no option that would replace or parameterize it.
+void check_expression(std::span<const Mesh> operands, const Csg& expression, const BooleanOptions& options) {
+  if (expression.nodes().empty()) throw Error("boolean: the expression is empty (a default-constructed Csg)");
+  if (options.indicator) throw Error("boolean: options.indicator cannot be combined with an expression");
+  if (options.min_k != 1)
+    throw Error("boolean: options.min_k does not apply to an expression; use Csg::at_least(k, terms)");
+  if (expression.operand_count() > operands.size())
+    throw Error("boolean: the expression uses operand " + std::to_string(expression.operand_count() - 1) +
+                " but only " + std::to_string(operands.size()) + " operands were given");
+  for (std::size_t i = 0; i < operands.size(); ++i)
+    if (!expression.uses(i))
+      throw Error(
+          "the expression does not use this operand; pass only the operands it names (each shapes the "
+          "common grid)",
+          {.operand = i});
+}
 
-BooleanResult boolean(std::span<const Mesh> operands, Operation op, const BooleanOptions& options) {
+/// The Boolean of `op`, or of `expression` when it is given.
+BooleanResult run_boolean(std::span<const Mesh> operands, Operation op, const Csg* expression,
+                          const BooleanOptions& options) {
   const auto start = Clock::now();
   report(options, "prepare", 0.0);
   check_options(operands, options);
-  if (!options.indicator) indicator_for(op, operands.size(), options.min_k);  // checks min_k
+  if (expression)
+    check_expression(operands, *expression, options);
+  else if (!options.indicator)
+    indicator_for(op, operands.size(), options.min_k);  // checks min_k
   BooleanResult result;
   const int threads = thread_count(options);
   result.stats.threads = threads;
@@ -172,7 +194,7 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
 
   Clock::time_point proved = setup_done;
   core::RouteResult route;
-  if (!in.triangles.grid.corners.empty()) route = solve(in, op, options, threads, arena, result, proved);
+  if (!in.triangles.grid.corners.empty()) route = solve(in, op, expression, options, threads, arena, result, proved);
   times.proof_ms = ms_between(setup_done, proved);
   const auto solved = Clock::now();
   times.solve_ms = ms_between(proved, solved);
@@ -188,6 +210,16 @@ BooleanResult boolean(std::span<const Mesh> operands, Operation op, const Boolea
   result.stats.diagnostics = diagnostics_of(route, mesh_stats, times);
   report(options, "done", 1.0);
   return result;
+}
+
+}  // namespace
+
+BooleanResult boolean(std::span<const Mesh> operands, Operation op, const BooleanOptions& options) {
+  return run_boolean(operands, op, nullptr, options);
+}
+
+BooleanResult boolean(std::span<const Mesh> operands, const Csg& expression, const BooleanOptions& options) {
+  return run_boolean(operands, Operation::Union, &expression, options);
 }
 
 }  // namespace ember

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ember/boolean.hpp"
+#include "ember/csg.hpp"
 #include "ember/error.hpp"
 #include "support/mesh_checks.hpp"
 #include "support/shapes.hpp"
@@ -45,8 +46,10 @@ std::string error_message(F&& f) {
 /// faces have >= 3 vertices, non-zero area and (with convex_tol >= 0) are
 /// convex and planar; one provenance entry per face with indices in range;
 /// stats.output_polygons matches.
-inline BooleanResult run_checked(std::span<const Mesh> ops, Operation op, const BooleanOptions& opt = {},
-                                 double convex_tol = -1) {
+/// `Rule` is an Operation or a Csg expression.
+template <class Rule>
+BooleanResult run_checked(std::span<const Mesh> ops, const Rule& op, const BooleanOptions& opt = {},
+                          double convex_tol = -1) {
   BooleanResult r = boolean(ops, op, opt);
   EXPECT_EQ(face_problems(r.mesh, convex_tol), "");
   EXPECT_EQ(r.provenance.size(), r.mesh.face_count());

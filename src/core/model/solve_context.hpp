@@ -7,6 +7,7 @@
 
 #include "core/model/indicator.hpp"
 #include "core/model/soup.hpp"
+#include "ember/csg.hpp"
 
 namespace ember::core {
 
@@ -19,6 +20,10 @@ struct SolveContext {
   /// whether unknown flags can change the result (`over_free`).
   std::optional<Operation> op;
   int min_k = 1;
+  /// The expression behind `inside` when it is one (ember/csg.hpp): its
+  /// three-valued evaluation (`Csg::value_over`) gives the early
+  /// terminations what `over_free` gives a built-in operation.
+  const Csg* expression = nullptr;
   /// Per operand: closed (every directed edge matched by an opposite one), so
   /// its winding number changes only across its surface. Lets the leaf skip
   /// cuts along coplanar polygons' edges (see docs/design.md).

@@ -21,18 +21,26 @@ Subproblem root_shell(const PreparedInput& input, std::size_t operands) {
 
 }  // namespace
 
-std::unique_ptr<SolveSetup> set_up_solve(PreparedInput& input, Operation op, const BooleanOptions& options) {
+std::unique_ptr<SolveSetup> set_up_solve(PreparedInput& input, Operation op, const Csg* expression,
+                                         const BooleanOptions& options) {
   const std::size_t operands = input.open_edges.size();
   auto s = std::make_unique<SolveSetup>();
   s->input = &input;
-  s->indicator = options.indicator ? options.indicator : indicator_for(op, operands, options.min_k);
+  if (expression) {
+    s->expression = *expression;
+    s->indicator = [&e = *s->expression](WindingVector w) { return e.inside(w); };
+  } else {
+    s->indicator = options.indicator ? options.indicator : indicator_for(op, operands, options.min_k);
+  }
   // Its soup is built where the general path or a proof's scan needs it.
   s->root =
       std::make_unique<RootProblem>(root_shell(input, operands), input.triangles.grid, input.triangles.operand_begin);
   SolveContext& ctx = s->ctx;
   ctx.operands = operands;
   ctx.inside = [&indicator = s->indicator](const Wnv& w) { return indicator(WindingVector(w.data(), w.size())); };
-  if (!options.indicator) {
+  if (expression) {
+    ctx.expression = &*s->expression;
+  } else if (!options.indicator) {
     ctx.op = op;
     ctx.min_k = options.min_k;
   }

@@ -16,7 +16,8 @@ namespace ember::core {
 
 struct SolveSetup {
   PreparedInput* input = nullptr;
-  Indicator indicator;  ///< ctx.inside calls it
+  Indicator indicator;            ///< ctx.inside calls it
+  std::optional<Csg> expression;  ///< ctx.expression points here
   std::unique_ptr<RootProblem> root;
   SolveContext ctx;
   /// Built only when every operand can end up solid (promised, or closed and
@@ -36,7 +37,9 @@ struct SolveSetup {
 };
 
 /// The set-up of the solve over `input`'s grid triangles (which must have
-/// some). Builds the trees inside the caller's task arena.
-std::unique_ptr<SolveSetup> set_up_solve(PreparedInput& input, Operation op, const BooleanOptions& options);
+/// some) for `op`, or for `expression` when it is given. Builds the trees
+/// inside the caller's task arena.
+std::unique_ptr<SolveSetup> set_up_solve(PreparedInput& input, Operation op, const Csg* expression,
+                                         const BooleanOptions& options);
 
 }  // namespace ember::core

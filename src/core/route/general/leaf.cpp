@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <iterator>
@@ -397,6 +398,8 @@ namespace {
 /// Every built-in operation is monotone in the count, so the extremes decide.
 bool could_be_constant(const SolveContext& ctx, std::size_t free, bool first_free, std::size_t known,
                        std::size_t known_in, int first_known) {
+  // An expression need not be monotone in the count: a trace tells (side_value).
+  if (ctx.expression) return true;
   if (!ctx.op) return false;
   const std::size_t unknown = ctx.operands - free - known;
   if (first_free || first_known >= 0) {
@@ -412,6 +415,14 @@ bool could_be_constant(const SolveContext& ctx, std::size_t free, bool first_fre
 /// one point, when it is the same everywhere along that side (-1 otherwise).
 int side_value(const SolveContext& ctx, const Wnv& w, const std::vector<std::uint32_t>& free, std::uint32_t stamp,
                std::size_t n_free) {
+  if (ctx.expression) {
+    std::array<signed char, 64> small;
+    std::vector<signed char> large;
+    signed char* state = small.data();
+    if (w.size() > small.size()) state = (large.resize(w.size()), large.data());
+    for (std::size_t o = 0; o < w.size(); ++o) state[o] = free[o] == stamp ? -1 : (w[o] != 0 ? 1 : 0);
+    return ctx.expression->value_over(std::span<const signed char>(state, w.size()));
+  }
   std::size_t inside = 0;
   for (std::size_t o = 0; o < w.size(); ++o) inside += w[o] != 0 && free[o] != stamp;
   const int first = free[0] == stamp ? -1 : (w[0] != 0 ? 1 : 0);

@@ -292,6 +292,12 @@ namespace {
 /// indicator_constant for a subproblem whose operands with polygons are `present`:
 /// the other operands keep the reference point's flags, the present ones are free.
 bool indicator_constant(const Subproblem& pb, const SolveContext& ctx, const std::vector<std::uint32_t>& present) {
+  if (ctx.expression) {
+    std::vector<signed char> state(ctx.operands);
+    for (std::size_t i = 0; i < ctx.operands; ++i) state[i] = pb.ref_w[i] != 0 ? 1 : 0;
+    for (const std::uint32_t o : present) state[o] = -1;
+    return ctx.expression->value_over(state) >= 0;
+  }
   if (!ctx.op) return false;
   std::size_t inside = 0;
   for (std::size_t i = 0; i < ctx.operands; ++i) inside += pb.ref_w[i] != 0;
