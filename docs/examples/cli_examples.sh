@@ -18,7 +18,10 @@ grep -q '"operation": "union"' stats.json || fail "--stats printed no JSON"
 "$ember" difference "$examples/two_cubes.3mf" demo/sphere.obj -o cut.3mf
 # Any number of inputs; at least 2 of 3.
 "$ember" union demo/torus.obj demo/sphere.obj "$examples/two_cubes.3mf" --min-k 2 -o overlap.ply
-for f in union.3mf cut.3mf overlap.ply; do [[ -s $f ]] || fail "$f not written"; done
+# Any CSG expression in one Boolean; quote names with spaces; a file named twice is read once.
+cp demo/sphere.obj "ball 1.obj"
+"$ember" eval "(demo/torus.obj | 'ball 1.obj') - (demo/torus.obj & demo/difference.obj)" -o expr.obj
+for f in union.3mf cut.3mf overlap.ply expr.obj; do [[ -s $f ]] || fail "$f not written"; done
 
 # Errors: one line on stderr, exit status 1, no output file.
 echo "not a mesh" > broken.stl

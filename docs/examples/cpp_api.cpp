@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include <ember/boolean.hpp>
+#include <ember/csg.hpp>
 #include <ember/error.hpp>
 #include <ember/io/mesh_io.hpp>
 #include <ember/shapes.hpp>
@@ -36,6 +37,11 @@ int main(int argc, char** argv) {
     const ember::Mesh back = ember::read_mesh(dir / "torus.3mf");  // 3MF stores floats: coordinates round
     const ember::BooleanResult uni = ember::boolean({back, sphere}, ember::Operation::Union);
     std::printf("union of torus.3mf and the sphere: %zu polygons\n", uni.mesh.face_count());
+
+    // Any CSG expression in one Boolean: operands by index, each quantized once.
+    const ember::Csg t = ember::Csg::operand(0), s = ember::Csg::operand(1);
+    const ember::BooleanResult shell = ember::boolean({torus, sphere}, (t | s) - (t & s));
+    std::printf("(torus | sphere) - (torus & sphere): %zu polygons\n", shell.mesh.face_count());
 
     // Bad input is an ember::Error whose message says what to fix.
     ember::Mesh broken = torus;

@@ -79,4 +79,9 @@ class Csg {
 /// ember::Error as boolean(operands, op) does.
 BooleanResult boolean(std::span<const Mesh> operands, const Csg& expression, const BooleanOptions& options = {});
 
+inline BooleanResult boolean(std::initializer_list<Mesh> operands, const Csg& expression,
+                             const BooleanOptions& options = {}) {
+  return boolean(std::span<const Mesh>(operands.begin(), operands.size()), expression, options);
+}
+
 }  // namespace ember

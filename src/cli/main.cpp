@@ -2,6 +2,7 @@
 //
 //   ember union|intersection|difference|xor A B [C ...] -o OUT
 //         [--min-k K] [--threads N] [--stats] [--allow-open] [--assume-solid] [--no-solid-check] [--quiet] [--polygons]
+//   ember eval '(A | B) - C' -o OUT [the same options but --min-k]
 //   ember demo [-o DIR] [--threads N]
 //   ember --version
 //
@@ -19,10 +20,12 @@
 #include <vector>
 
 #include "ember/boolean.hpp"
+#include "ember/csg.hpp"
 #include "ember/error.hpp"
 #include "ember/io/mesh_io.hpp"
 #include "ember/process.hpp"
 #include "ember/shapes.hpp"
+#include "cli/expression.hpp"
 #include "cli/operands.hpp"
 #include "cli/progress.hpp"
 #include "cli/output_file.hpp"
@@ -124,6 +127,24 @@ void check_operand_count(std::size_t n, const BooleanArgs& a) {
                                " (each input file is one operand, each object of a 3MF file one)");
 }
 
+ember::ReadOptions read_options_of(const BooleanArgs& a) {
+  ember::ReadOptions read_options;
+  if (!a.max_3mf_triangles.empty())
+    read_options.max_3mf_triangles =
+        ember::cli::parse_count_option("--max-3mf-triangles", a.max_3mf_triangles, "a whole number from 1");
+  if (!a.max_3mf_instancing.empty())
+    read_options.max_3mf_instancing =
+        ember::cli::parse_count_option("--max-3mf-instancing", a.max_3mf_instancing, "a whole number from 1");
+  return read_options;
+}
+
+/// The common part of every Boolean command once its operands are read:
+/// runs `compute` (with a progress bar on a terminal), prints the warnings,
+/// writes the output and the stats. Errors about an operand name its file.
+template <class Compute>
+int compute_and_write(const ember::cli::Operands& operands, const std::vector<std::string>& read_warnings,
+                      ember::BooleanOptions options, const BooleanArgs& a, const std::string& label, Compute&& compute);
+
 int run_boolean(ember::Operation op, const BooleanArgs& a) {
   const bool any_3mf = has_3mf_input(a);
   // Usage errors before any file is read, as far as they are known then.
@@ -141,16 +162,18 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
   }
   ember::format_from_path(a.output);  // reject an unknown output extension before any work
   std::vector<std::string> read_warnings;
-  ember::ReadOptions read_options;
-  if (!a.max_3mf_triangles.empty())
-    read_options.max_3mf_triangles =
-        ember::cli::parse_count_option("--max-3mf-triangles", a.max_3mf_triangles, "a whole number from 1");
-  if (!a.max_3mf_instancing.empty())
-    read_options.max_3mf_instancing =
-        ember::cli::parse_count_option("--max-3mf-instancing", a.max_3mf_instancing, "a whole number from 1");
-  const ember::cli::Operands operands = ember::cli::read_operands(a.inputs, &read_warnings, &g_activity, read_options);
+  const ember::cli::Operands operands =
+      ember::cli::read_operands(a.inputs, &read_warnings, &g_activity, read_options_of(a));
   check_operand_count(operands.meshes.size(), a);
-  ember::BooleanOptions options = boolean_options(op, a, operands.meshes.size());
+  const ember::BooleanOptions options = boolean_options(op, a, operands.meshes.size());
+  return compute_and_write(operands, read_warnings, options, a, operation_name(op),
+                           [&](const ember::BooleanOptions& o) { return ember::boolean(operands.meshes, op, o); });
+}
+
+template <class Compute>
+int compute_and_write(const ember::cli::Operands& operands, const std::vector<std::string>& read_warnings,
+                      ember::BooleanOptions options, const BooleanArgs& a, const std::string& label,
+                      Compute&& compute) {
   std::size_t triangles = 0;
   for (const ember::Mesh& m : operands.meshes) triangles += m.triangle_count();
   g_activity = "the Boolean of " + std::to_string(triangles) + " triangles";
@@ -161,7 +184,7 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
     // Destroyed (bar erased) before any warning or error is printed.
     const auto progress = ember::cli::ProgressDisplay::on_terminal(!a.quiet);
     if (progress) options.progress = progress->callback();
-    r = ember::boolean(operands.meshes, op, options);
+    r = compute(options);
   } catch (const ember::Error& e) {
     const std::optional<std::size_t> o = e.operand();
     if (o && *o < operands.names.size()) throw ember::Error(e.problem(), {.file = operands.names[*o]});
@@ -177,8 +200,33 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
                    "use .ply, .obj or .off to keep the double coordinates\n",
                    a.output.c_str(), bad);
   write_atomically(r.mesh, a.output, r.provenance);  // PLY keeps it as face properties
-  if (a.stats) ember::cli::print_stats(r, operation_name(op), operands.names);
+  if (a.stats) ember::cli::print_stats(r, label.c_str(), operands.names);
   return 0;
+}
+
+/// `ember eval EXPR`: every file the expression names is one operand (read
+/// once, however often it is named), and the expression one Boolean.
+int run_eval(const std::string& text, const BooleanArgs& a) {
+  const ember::cli::ParsedExpression parsed = ember::cli::parse_expression(text);
+  ember::Operation unused = ember::Operation::Union;
+  const ember::BooleanOptions options = boolean_options(unused, a, parsed.paths.size());
+  ember::format_from_path(a.output);  // reject an unknown output extension before any work
+  const ember::ReadOptions read_options = read_options_of(a);
+  std::vector<std::string> read_warnings;
+  ember::cli::Operands operands;
+  for (const std::string& path : parsed.paths) {
+    ember::cli::Operands one = ember::cli::read_operands({path}, &read_warnings, &g_activity, read_options);
+    if (one.meshes.size() != 1)
+      throw ember::Error("holds " + std::to_string(one.meshes.size()) +
+                             " objects; in an expression each file is one operand (split the 3MF file, or use "
+                             "'ember union' and the other commands, which take each object as an operand)",
+                         {.file = path});
+    operands.meshes.push_back(std::move(one.meshes[0]));
+    operands.names.push_back(path);
+  }
+  return compute_and_write(operands, read_warnings, options, a, text, [&](const ember::BooleanOptions& o) {
+    return ember::boolean(operands.meshes, parsed.expression, o);
+  });
 }
 
 int run_demo(const std::string& dir, int threads) {
@@ -201,6 +249,29 @@ int run_demo(const std::string& dir, int threads) {
                 r.stats.output_polygons, r.stats.time_ms, r.stats.threads);
   }
   return 0;
+}
+
+/// The options every Boolean command takes (all but --min-k).
+void add_boolean_options(CLI::App* sub, BooleanArgs& args) {
+  sub->add_option("-o,--output", args.output, "Output mesh; format from extension")->required();
+  sub->add_option("--threads", args.threads, "Worker threads (0 = all cores; results are identical)");
+  sub->add_option("--max-3mf-triangles", args.max_3mf_triangles,
+                  "Refuse a 3MF file whose components expand to more triangles (default 100000000)");
+  sub->add_option("--max-3mf-instancing", args.max_3mf_instancing,
+                  "Refuse a 3MF file expanding to over 1 million triangles and this many times what it stores "
+                  "(default 1000)");
+  sub->add_flag("--stats", args.stats, "Print one JSON object with timing and counts on stderr");
+  sub->add_flag("--allow-open", args.allow_open, "Accept inputs that are not closed (warns)");
+  sub->add_flag("--quiet", args.quiet, "No warnings and no progress bar on stderr (errors are still printed)");
+  sub->add_flag("--assume-solid", args.assume_solid,
+                "Promise every input is solid (closed, outward, no self-intersections, no nested or touching "
+                "components): skips the solid check; a false promise gives a wrong result");
+  sub->add_flag("--no-solid-check", args.no_solid_check,
+                "Do not try to prove inputs solid (by default each closed input is checked exactly and, "
+                "if solid, takes the fast path); saves the check's time on inputs known to fail it");
+  sub->add_flag("--polygons", args.polygons,
+                "Write the exact core's raw convex pieces (T-junctions, as in the paper) instead of the "
+                "default watertight triangle mesh");
 }
 
 }  // namespace
@@ -227,28 +298,18 @@ int main(int argc, char** argv) {
     sub->add_option("inputs", args.inputs, "Input meshes (two or more operands; each object of a 3MF file is one)")
         ->required()
         ->expected(1, -1);  // 2 operands: counted after reading (a 3MF file may hold several)
-    sub->add_option("-o,--output", args.output, "Output mesh; format from extension")->required();
     sub->add_option("--min-k", args.min_k, "union only: keep the solid inside at least K operands (1..operands)");
-    sub->add_option("--threads", args.threads, "Worker threads (0 = all cores; results are identical)");
-    sub->add_option("--max-3mf-triangles", args.max_3mf_triangles,
-                    "Refuse a 3MF file whose components expand to more triangles (default 100000000)");
-    sub->add_option("--max-3mf-instancing", args.max_3mf_instancing,
-                    "Refuse a 3MF file expanding to over 1 million triangles and this many times what it stores "
-                    "(default 1000)");
-    sub->add_flag("--stats", args.stats, "Print one JSON object with timing and counts on stderr");
-    sub->add_flag("--allow-open", args.allow_open, "Accept inputs that are not closed (warns)");
-    sub->add_flag("--quiet", args.quiet, "No warnings and no progress bar on stderr (errors are still printed)");
-    sub->add_flag("--assume-solid", args.assume_solid,
-                  "Promise every input is solid (closed, outward, no self-intersections, no nested or touching "
-                  "components): skips the solid check; a false promise gives a wrong result");
-    sub->add_flag("--no-solid-check", args.no_solid_check,
-                  "Do not try to prove inputs solid (by default each closed input is checked exactly and, "
-                  "if solid, takes the fast path); saves the check's time on inputs known to fail it");
-    sub->add_flag("--polygons", args.polygons,
-                  "Write the exact core's raw convex pieces (T-junctions, as in the paper) instead of the "
-                  "default watertight triangle mesh");
+    add_boolean_options(sub, args);
     subs.emplace_back(sub, c.op);
   }
+  std::string expression;
+  CLI::App* eval = app.add_subcommand("eval", "Evaluate a CSG expression over mesh files in one Boolean");
+  eval->add_option("expression", expression,
+                   "Files combined with | (union) & (intersection) - (difference) ^ (xor) and parentheses, "
+                   "e.g. '(a.obj | b.stl) - c.ply'; mixed operators need parentheses; quote names with spaces "
+                   "or operator characters inside the expression")
+      ->required();
+  add_boolean_options(eval, args);
   std::string demo_dir = "ember-demo";
   std::string demo_threads = "0";
   CLI::App* demo = app.add_subcommand("demo", "Run all operations on two built-in solids, write OBJ files");
@@ -269,6 +330,7 @@ int main(int argc, char** argv) {
       return run_demo(demo_dir, ember::cli::parse_int_option("--threads", demo_threads, 0, 1 << 16, kThreadsRange));
     for (const auto& [sub, op] : subs)
       if (sub->parsed()) return run_boolean(op, args);
+    if (eval->parsed()) return run_eval(expression, args);
   } catch (const ember::cli::UsageError& e) {
     std::fprintf(stderr, "ember: %s (see 'ember --help')\n", e.what());
     return 2;

@@ -42,7 +42,7 @@ void print_stats(const BooleanResult& r, const char* operation, const std::vecto
   const auto count = [&](std::string_view name) { return static_cast<std::size_t>(s.diagnostic(name)); };
   const auto flag = [&](std::string_view name) { return s.diagnostic(name) != 0 ? 1 : 0; };
   std::fprintf(stderr,
-               "{\"version\": \"%s\", \"operation\": \"%s\", \"input_triangles\": %zu, \"dropped_degenerate\": %zu, "
+               "{\"version\": \"%s\", \"operation\": %s, \"input_triangles\": %zu, \"dropped_degenerate\": %zu, "
                "\"collapsed_triangles\": %zu, \"flipped_triangles\": %zu, \"grid_step\": %.17g, "
                "\"output_polygons\": %zu, \"dropped_slivers\": %zu, \"solid_operands\": %zu, \"merged_triangles\": "
                "%zu, \"solid_path\": %d, \"direct_mesh\": %d, "
@@ -53,9 +53,9 @@ void print_stats(const BooleanResult& r, const char* operation, const std::vecto
                "\"rounded_degenerate\": %zu, \"time_ms\": %.3f, \"setup_ms\": %.3f, \"proof_ms\": %.3f, "
                "\"solve_ms\": %.3f, \"output_ms\": %.3f, \"weld_ms\": %.3f, \"tjunction_ms\": %.3f, "
                "\"regions_ms\": %.3f, \"triangulate_ms\": %.3f, \"threads\": %d}\n",
-               EMBER_VERSION, operation, s.input_triangles, s.dropped_degenerate, s.collapsed_triangles,
-               s.flipped_triangles, s.grid_step, s.output_polygons, s.dropped_slivers, s.solid_operands,
-               count("merged_triangles"), flag("solid_path"), flag("direct_mesh"), open_edges, pairs,
+               EMBER_VERSION, json_string(operation).c_str(), s.input_triangles, s.dropped_degenerate,
+               s.collapsed_triangles, s.flipped_triangles, s.grid_step, s.output_polygons, s.dropped_slivers,
+               s.solid_operands, count("merged_triangles"), flag("solid_path"), flag("direct_mesh"), open_edges, pairs,
                pairs_complete ? 1 : 0, misoriented, json_string(solid_check).c_str(), s.output_vertices,
                count("tjunctions_resolved"), count("collinear_removed"), count("regions"), count("fallback_regions"),
                s.rounded_degenerate, s.time_ms, s.diagnostic("setup_ms"), s.diagnostic("proof_ms"),

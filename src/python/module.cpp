@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "ember/boolean.hpp"
+#include "ember/csg.hpp"
 #include "ember/error.hpp"
 #include "ember/io/mesh_io.hpp"
 
@@ -164,8 +165,10 @@ py::dict stats_dict(const ember::BooleanStats& s) {
   return d;
 }
 
-/// union/intersection/difference/xor(*meshes, **options).
-py::tuple run_boolean(ember::Operation op, const py::args& meshes, const py::kwargs& kwargs) {
+/// union/intersection/difference/xor(*meshes, **options), or the expression
+/// over `meshes` when one is given (then min_k is not an option).
+py::tuple run_boolean(ember::Operation op, const py::tuple& meshes, const py::kwargs& kwargs,
+                      const ember::Csg* expression = nullptr) {
   ember::BooleanOptions options;
   bool want_provenance = false, want_stats = false;
   for (const auto& [key, value] : kwargs) {
@@ -182,7 +185,7 @@ py::tuple run_boolean(ember::Operation op, const py::args& meshes, const py::kwa
       want_provenance = bool_option(value, k);
     else if (k == "return_stats")
       want_stats = bool_option(value, k);
-    else if (k == "min_k" && op == ember::Operation::Union) {
+    else if (k == "min_k" && op == ember::Operation::Union && !expression) {
       if (!value.is_none()) {
         op = ember::Operation::AtLeastK;
         const auto n = static_cast<long long>(meshes.size());
@@ -192,7 +195,7 @@ py::tuple run_boolean(ember::Operation op, const py::args& meshes, const py::kwa
     } else {
       throw py::type_error("unexpected keyword argument '" + k +
                            "' (options: threads, allow_open, assume_solid, detect_solid, return_provenance, "
-                           "return_stats; union also min_k)");
+                           "return_stats; union also min_k; for expressions use ember.at_least)");
     }
   }
   std::vector<ember::Mesh> operands;
@@ -204,7 +207,7 @@ py::tuple run_boolean(ember::Operation op, const py::args& meshes, const py::kwa
   {
     // The exact core runs on its own threads and touches no Python object.
     py::gil_scoped_release release;
-    r = ember::boolean(operands, op, options);
+    r = expression ? ember::boolean(operands, *expression, options) : ember::boolean(operands, op, options);
   }
   for (const std::string& w : r.warnings)
     if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 1) != 0) throw py::error_already_set();
@@ -226,6 +229,63 @@ py::tuple run_boolean(ember::Operation op, const py::args& meshes, const py::kwa
   }
   if (want_stats) out.append(stats_dict(r.stats));
   return py::tuple(out);
+}
+
+/// An expression over Python meshes: an ember::Csg over `operands`, which
+/// holds each mesh object once (by identity), so a mesh used twice is one
+/// operand, converted and quantized once.
+struct PyCsg {
+  ember::Csg expression;
+  std::vector<py::object> operands;
+};
+
+/// `e` with operand i renamed to map[i] (rebuilt from its postfix nodes).
+ember::Csg renumbered(const ember::Csg& e, const std::vector<std::size_t>& map) {
+  using Kind = ember::Csg::Kind;
+  std::vector<ember::Csg> stack;
+  for (const ember::Csg::Node& node : e.nodes()) {
+    if (node.kind == Kind::Operand) {
+      stack.push_back(ember::Csg::operand(map[node.value]));
+      continue;
+    }
+    std::vector<ember::Csg> terms(stack.end() - node.arity, stack.end());
+    stack.resize(stack.size() - node.arity);
+    if (node.kind == Kind::AtLeast) {
+      stack.push_back(ember::Csg::at_least(static_cast<int>(node.value), terms));
+      continue;
+    }
+    ember::Csg acc = terms[0];
+    for (std::size_t i = 1; i < terms.size(); ++i) {
+      switch (node.kind) {
+        case Kind::Union: acc = acc | terms[i]; break;
+        case Kind::Intersection: acc = acc & terms[i]; break;
+        case Kind::Difference: acc = acc - terms[i]; break;
+        default: acc = acc ^ terms[i]; break;
+      }
+    }
+    stack.push_back(acc);
+  }
+  return stack.back();
+}
+
+/// `b`'s expression over the operand list `into` (extended by b's meshes not in it).
+ember::Csg adopt(const PyCsg& b, std::vector<py::object>& into) {
+  std::vector<std::size_t> map(b.operands.size());
+  for (std::size_t i = 0; i < b.operands.size(); ++i) {
+    std::size_t j = 0;
+    while (j < into.size() && !into[j].is(b.operands[i])) ++j;
+    if (j == into.size()) into.push_back(b.operands[i]);
+    map[i] = j;
+  }
+  return renumbered(b.expression, map);
+}
+
+template <class Combine>
+PyCsg combined(const PyCsg& a, const PyCsg& b, Combine&& combine) {
+  PyCsg out{a.expression, a.operands};
+  const ember::Csg rhs = adopt(b, out.operands);
+  out.expression = combine(a.expression, rhs);
+  return out;
 }
 
 }  // namespace
@@ -255,6 +315,61 @@ PYBIND11_MODULE(ember, m) {
         o.name, [op](const py::args& a, const py::kwargs& k) { return run_boolean(op, a, k); },
         (std::string(o.what) + options_doc).c_str());
   }
+
+  py::class_<PyCsg>(m, "Csg",
+                    "A CSG expression over meshes, evaluated as ONE Boolean: Csg(mesh) wraps a mesh "
+                    "((vertices, faces) or a trimesh-like object); combine with | & - ^ and ember.at_least; "
+                    "evaluate with .evaluate(**options) or ember.evaluate(expr, **options). A mesh object used "
+                    "twice is one operand.")
+      .def(py::init([](py::object mesh) {
+             (void)to_mesh(mesh, "Csg operand");  // fail now, not at evaluation, on a bad mesh
+             return PyCsg{ember::Csg::operand(0), {std::move(mesh)}};
+           }),
+           py::arg("mesh"))
+      .def("__or__",
+           [](const PyCsg& a, const PyCsg& b) { return combined(a, b, [](auto& x, auto& y) { return x | y; }); })
+      .def("__and__",
+           [](const PyCsg& a, const PyCsg& b) { return combined(a, b, [](auto& x, auto& y) { return x & y; }); })
+      .def("__sub__",
+           [](const PyCsg& a, const PyCsg& b) { return combined(a, b, [](auto& x, auto& y) { return x - y; }); })
+      .def("__xor__",
+           [](const PyCsg& a, const PyCsg& b) { return combined(a, b, [](auto& x, auto& y) { return x ^ y; }); })
+      .def_property_readonly(
+          "operands", [](const PyCsg& e) { return py::tuple(py::cast(e.operands)); },
+          "The distinct meshes, in operand order (#0, #1, ...).")
+      .def("__repr__", [](const PyCsg& e) { return "ember.Csg(" + e.expression.to_string() + ")"; })
+      .def(
+          "evaluate",
+          [](const PyCsg& e, const py::kwargs& k) {
+            return run_boolean(ember::Operation::Union, py::tuple(py::cast(e.operands)), k, &e.expression);
+          },
+          "evaluate(threads=0, allow_open=False, assume_solid=False, detect_solid=True, return_provenance=False, "
+          "return_stats=False) -> (vertices, faces[, provenance][, stats]): the expression in one Boolean over its "
+          "distinct meshes (provenance names them by their index in .operands).");
+  m.def(
+      "evaluate",
+      [](const PyCsg& e, const py::kwargs& k) {
+        return run_boolean(ember::Operation::Union, py::tuple(py::cast(e.operands)), k, &e.expression);
+      },
+      py::arg("expression"), "evaluate(expression, **options): the same as expression.evaluate(**options).");
+  m.def(
+      "at_least",
+      [](const py::args& terms) {
+        if (terms.size() < 2) throw py::type_error("at_least(k, *terms) needs k and at least one term");
+        const int k = int_option(terms[0], "k", 1, static_cast<long long>(terms.size() - 1),
+                                 "from 1 to the number of terms (" + std::to_string(terms.size() - 1) + ")");
+        PyCsg out;
+        std::vector<ember::Csg> parts;
+        for (std::size_t i = 1; i < terms.size(); ++i) {
+          const PyCsg t = py::isinstance<PyCsg>(terms[i])
+                              ? terms[i].cast<PyCsg>()
+                              : PyCsg{ember::Csg::operand(0), {py::reinterpret_borrow<py::object>(terms[i])}};
+          parts.push_back(adopt(t, out.operands));
+        }
+        out.expression = ember::Csg::at_least(k, parts);
+        return out;
+      },
+      "at_least(k, *terms) -> Csg: inside at least k of the terms (Csg expressions or meshes).");
 
   m.def(
       "read",

@@ -287,5 +287,60 @@ class Files(unittest.TestCase):
             ember.read(self.path("junk.3mf"))
 
 
+def box(lo, hi):
+    """An axis-aligned box from corner lo to corner hi."""
+    v, f = cube(0.0, 1.0)
+    return v * (np.array(hi, dtype=np.float64) - np.array(lo, dtype=np.float64)) + np.array(lo, dtype=np.float64), f
+
+
+class Expressions(unittest.TestCase):
+    """ember.Csg: any CSG expression as one Boolean (boxes: exact volumes)."""
+
+    def setUp(self):
+        self.a = box((0, 0, 0), (2, 2, 2))
+        self.b = box((1, 1, 1), (3, 3, 3))
+        self.c = box((1, 1, -1), (2, 2, 4))
+        self.d = box((0, 0, 1.5), (3, 3, 4))
+
+    def test_expressions_have_the_exact_volumes(self):
+        a, b, c, d = (ember.Csg(m) for m in (self.a, self.b, self.c, self.d))
+        self.assertEqual(volume((a | b).evaluate()), 15.0)
+        self.assertEqual(volume(((a | b) - c).evaluate()), 12.0)
+        self.assertEqual(volume((((a | b) - c) & d).evaluate()), 6.0)
+        self.assertEqual(volume(ember.evaluate((a ^ b) | (c - d))), 15.5)
+        self.assertEqual(volume(ember.at_least(2, a, b, self.c).evaluate()), 3.0)  # pairwise overlaps: [1,2]^2 x [0,3]
+
+    def test_a_mesh_used_twice_is_one_operand(self):
+        a, b = ember.Csg(self.a), ember.Csg(self.b)
+        e = (a | b) - (a & b)
+        self.assertEqual(len(e.operands), 2)
+        self.assertEqual(repr(e), "ember.Csg((#0 | #1) - (#0 & #1))")
+        v, f, stats = e.evaluate(return_stats=True, threads=2)
+        self.assertEqual(stats["input_triangles"], 24)
+        self.assertEqual(volume((v, f)), 14.0)
+
+    def test_provenance_names_the_distinct_meshes(self):
+        # A column off the boxes' planes, so every operand's faces reach the result.
+        column = box((0.5, 0.5, -1), (1.5, 1.5, 4))
+        a, b, c = (ember.Csg(m) for m in (self.a, self.b, column))
+        v, f, prov = ((a | b) - c).evaluate(return_provenance=True)
+        self.assertEqual(set(prov[:, 0].tolist()), {0, 1, 2})
+
+    def test_threads_do_not_change_the_result(self):
+        a, b, c = (ember.Csg(m) for m in (self.a, self.b, self.c))
+        e = (a ^ b) - c
+        one, two = e.evaluate(threads=1), e.evaluate(threads=2)
+        self.assertTrue(np.array_equal(one[0], two[0]) and np.array_equal(one[1], two[1]))
+
+    def test_misuse_raises_errors_that_name_the_argument(self):
+        a, b = ember.Csg(self.a), ember.Csg(self.b)
+        with self.assertRaises(TypeError):
+            (a | b).evaluate(min_k=2)
+        with self.assertRaises(ValueError):
+            ember.at_least(3, a, b)
+        with self.assertRaises(ember.Error):
+            ember.Csg((np.zeros((3, 3)), np.array([[0, 1, 5]])))
+
+
 if __name__ == "__main__":
     unittest.main()
