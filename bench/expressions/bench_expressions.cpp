@@ -3,7 +3,12 @@
 // the next step's operand), on four overlapping meshes. Prints one line per
 // expression: the median time of each, their ratio, and the volumes.
 //
-//   bench_expressions [--threads N] [--repeats R] [A B C D]
+//   bench_expressions [--threads N] [--repeats R] [--write DIR] [A B C D ...]
+//
+// Then all layers of the operands (inside at least k, k = 1..n) from one
+// boolean_layers call against n separate AtLeastK Booleans. --write DIR
+// writes the placed operands as DIR/op0.obj .. so that peers can run the
+// same chains (bench/expressions/run.py).
 //
 // Without files it uses four procedural solids. Files are read as given and
 // moved so that they overlap as in the paper (each scaled into the unit box,
@@ -101,7 +106,14 @@ int main(int argc, char** argv) {
       else
         files.push_back(a);
     }
-    if (!files.empty() && files.size() != 4) throw ember::Error("give four mesh files, or none");
+    std::string write_dir;
+    for (std::size_t i = 0; i + 1 < files.size(); ++i)
+      if (files[i] == "--write") {
+        write_dir = files[i + 1];
+        files.erase(files.begin() + static_cast<std::ptrdiff_t>(i), files.begin() + static_cast<std::ptrdiff_t>(i) + 2);
+        break;
+      }
+    if (!files.empty() && files.size() < 4) throw ember::Error("give four or more mesh files, or none");
     std::vector<Mesh> in;
     if (files.empty()) {
       in = {ember::shapes::uv_sphere({0, 0, 0}, 1.0, 128, 64), ember::shapes::torus(1.0, 0.35, 192, 96),
@@ -109,9 +121,15 @@ int main(int argc, char** argv) {
     } else {
       for (const std::string& f : files) in.push_back(ember::read_mesh(f));
     }
-    const double angles[] = {0.0, 0.7, 1.9, 2.6};
-    const ember::Vec3d offsets[] = {{0, 0, 0}, {0.2, 0.1, 0.05}, {-0.15, 0.2, 0.1}, {0.1, -0.2, -0.1}};
-    for (std::size_t i = 0; i < 4; ++i) in[i] = placed(std::move(in[i]), angles[i], offsets[i]);
+    // Each operand turned and moved by a fraction of its size, so all overlap.
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      const double t = static_cast<double>(i);
+      in[i] = placed(std::move(in[i]), 0.7 * t,
+                     {0.2 * std::sin(2.1 * t), 0.2 * std::cos(1.3 * t) - 0.2, 0.1 * std::sin(t)});
+    }
+    if (!write_dir.empty())
+      for (std::size_t i = 0; i < in.size(); ++i)
+        ember::write_mesh(in[i], write_dir + "/op" + std::to_string(i) + ".obj");
     std::size_t triangles = 0;
     for (const Mesh& m : in) triangles += m.triangle_count();
 
@@ -125,13 +143,15 @@ int main(int argc, char** argv) {
          a - b - c - d,
          {{Operation::Difference, {0, 1}}, {Operation::Difference, {-1, 2}}, {Operation::Difference, {-1, 3}}}},
     };
-    std::printf("four operands, %zu triangles, %d threads, median of %d runs\n", triangles, options.threads, repeats);
+    const std::vector<Mesh> four(in.begin(), in.begin() + 4);
+    std::printf("expressions over the first four operands, %zu triangles in all, %d threads, median of %d runs\n",
+                triangles, options.threads, repeats);
     std::printf("%-14s %12s %12s %8s %14s %14s\n", "expression", "one pass ms", "chain ms", "speedup", "volume 1-pass",
                 "volume chain");
     for (const Case& k : cases) {
       Mesh one, chained;
       const double t_one = median_ms(
-          repeats, [&] { return ember::boolean(in, k.expression, options).mesh; }, one);
+          repeats, [&] { return ember::boolean(four, k.expression, options).mesh; }, one);
       const double t_chain = median_ms(
           repeats,
           [&] {
@@ -152,7 +172,31 @@ int main(int argc, char** argv) {
       std::printf("%-14s %12.1f %12.1f %7.2fx %14.6f %14.6f\n", k.name, t_one, t_chain, t_chain / t_one, volume(one),
                   volume(chained));
     }
-    return 0;
+    // All layers: one pass against one AtLeastK Boolean per k.
+    std::vector<double> layer_volumes;
+    Mesh unused;
+    const double t_layers = median_ms(
+        repeats,
+        [&] {
+          layer_volumes.clear();
+          for (const ember::BooleanResult& r : ember::boolean_layers(in, options))
+            layer_volumes.push_back(volume(r.mesh));
+          return Mesh{};
+        },
+        unused);
+    double t_separate = 0;
+    bool same = true;
+    for (std::size_t k = 1; k <= in.size(); ++k) {
+      ember::BooleanOptions at_least = options;
+      at_least.min_k = static_cast<int>(k);
+      Mesh layer;
+      t_separate += median_ms(
+          repeats, [&] { return ember::boolean(in, Operation::AtLeastK, at_least).mesh; }, layer);
+      same &= std::abs(volume(layer) - layer_volumes[k - 1]) <= 1e-9 * std::abs(volume(layer)) + 1e-15;
+    }
+    std::printf("%-14s %12.1f %12.1f %7.2fx   (%zu layers; volumes %s)\n", "layers", t_layers, t_separate,
+                t_separate / t_layers, in.size(), same ? "agree" : "DIFFER");
+    return same ? 0 : 1;
   } catch (const ember::Error& e) {
     std::fprintf(stderr, "bench_expressions: %s\n", e.what());
     return 1;

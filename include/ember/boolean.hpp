@@ -167,6 +167,17 @@ inline BooleanResult boolean(std::initializer_list<Mesh> operands, Operation op,
   return boolean(std::span<const Mesh>(operands.begin(), operands.size()), op, options);
 }
 
+/// Every layer at once (the paper's Fig. 21): element k-1 is the solid
+/// inside at least k operands (what boolean(operands, AtLeastK) gives with
+/// min_k = k), for k = 1 .. operands.size(), all from ONE computation of the
+/// winding-number vectors; each layer is built as its own watertight mesh.
+/// The layers share the stats of the solve (time_ms is the whole call's);
+/// each has its own output counts. At most 255 operands;
+/// options.indicator and min_k must be left unset. The direct route does not
+/// run (it makes one mesh), and the general path has no early terminations
+/// here (every change of the count is output).
+std::vector<BooleanResult> boolean_layers(std::span<const Mesh> operands, const BooleanOptions& options = {});
+
 /// The solid check's finding in words: "proven solid", "not solid: self-intersecting
 /// (3 triangle pairs meet ...)", ... (for warnings and reports).
 std::string describe_solid_check(const OperandReport& report);

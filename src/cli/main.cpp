@@ -2,7 +2,8 @@
 //
 //   ember union|intersection|difference|xor A B [C ...] -o OUT
 //         [--min-k K] [--threads N] [--stats] [--allow-open] [--assume-solid] [--no-solid-check] [--quiet] [--polygons]
-//   ember eval '(A | B) - C' -o OUT [the same options but --min-k]
+//   ember union A B [C ...] --layers -o L.obj   (L-1.obj .. L-N.obj: inside at least k inputs)
+//   ember eval '(A | B) - C' -o OUT [the same options but --min-k and --layers]
 //   ember demo [-o DIR] [--threads N]
 //   ember --version
 //
@@ -84,6 +85,7 @@ struct BooleanArgs {
   bool no_solid_check = false;
   bool polygons = false;
   bool quiet = false;
+  bool layers = false;  ///< union --layers: every "at least k" layer, one file each
 };
 
 /// Options from the command line; usage errors (exit 2) name the option and
@@ -96,6 +98,10 @@ ember::BooleanOptions boolean_options(ember::Operation& op, const BooleanArgs& a
   options.all_solid = a.assume_solid;
   options.detect_solid = !a.no_solid_check;
   if (a.polygons) options.output = ember::BooleanOptions::Output::Polygons;
+  if (a.layers && op != ember::Operation::Union)
+    throw ember::cli::UsageError("--layers applies to 'union' only (every layer: inside at least k inputs)");
+  if (a.layers && !a.min_k.empty())
+    throw ember::cli::UsageError("--layers writes every k; it cannot be combined with --min-k");
   if (a.min_k.empty()) return options;
   const int n = static_cast<int>(operands);
   const std::string range = "K from 1 to the number of operands (" + std::to_string(n) + ")";
@@ -167,7 +173,10 @@ int run_boolean(ember::Operation op, const BooleanArgs& a) {
   check_operand_count(operands.meshes.size(), a);
   const ember::BooleanOptions options = boolean_options(op, a, operands.meshes.size());
   return compute_and_write(operands, read_warnings, options, a, operation_name(op),
-                           [&](const ember::BooleanOptions& o) { return ember::boolean(operands.meshes, op, o); });
+                           [&](const ember::BooleanOptions& o) {
+                             if (a.layers) return ember::boolean_layers(operands.meshes, o);
+                             return std::vector<ember::BooleanResult>{ember::boolean(operands.meshes, op, o)};
+                           });
 }
 
 template <class Compute>
@@ -179,28 +188,62 @@ int compute_and_write(const ember::cli::Operands& operands, const std::vector<st
   g_activity = "the Boolean of " + std::to_string(triangles) + " triangles";
   if (!a.quiet)
     for (const std::string& w : read_warnings) std::fprintf(stderr, "ember: warning: %s\n", w.c_str());
-  ember::BooleanResult r;
+  std::vector<ember::BooleanResult> results;
   try {
     // Destroyed (bar erased) before any warning or error is printed.
     const auto progress = ember::cli::ProgressDisplay::on_terminal(!a.quiet);
     if (progress) options.progress = progress->callback();
-    r = compute(options);
+    results = compute(options);
   } catch (const ember::Error& e) {
     const std::optional<std::size_t> o = e.operand();
     if (o && *o < operands.names.size()) throw ember::Error(e.problem(), {.file = operands.names[*o]});
     throw;
   }
-  if (!a.quiet)
-    for (const std::string& w : r.warnings)
-      std::fprintf(stderr, "ember: warning: %s\n", name_operand(w, operands.names).c_str());
-  if (ember::format_from_path(a.output) == ember::MeshFormat::Stl && !a.quiet)
-    if (const std::size_t bad = ember::stl_degenerate_triangles(r.mesh))
-      std::fprintf(stderr,
-                   "ember: warning: %s: %zu triangles become degenerate in STL's float32 coordinates; "
-                   "use .ply, .obj or .off to keep the double coordinates\n",
-                   a.output.c_str(), bad);
-  write_atomically(r.mesh, a.output, r.provenance);  // PLY keeps it as face properties
-  if (a.stats) ember::cli::print_stats(r, label.c_str(), operands.names);
+  // One output, or with --layers one per layer: OUT's name with -k before the extension.
+  std::vector<fs::path> outputs;
+  for (std::size_t k = 1; k <= results.size(); ++k) {
+    const fs::path out(a.output);
+    outputs.push_back(a.layers ? out.parent_path() /
+                                     (out.stem().string() + "-" + std::to_string(k) + out.extension().string())
+                               : out);
+  }
+  if (!a.quiet) {
+    // Layers share the input's warnings (they come first in each): printed once.
+    std::size_t shared = results[0].warnings.size();
+    for (const ember::BooleanResult& r : results) {
+      std::size_t n = 0;
+      while (n < shared && n < r.warnings.size() && r.warnings[n] == results[0].warnings[n]) ++n;
+      shared = n;
+    }
+    for (std::size_t i = 0; i < shared; ++i)
+      std::fprintf(stderr, "ember: warning: %s\n", name_operand(results[0].warnings[i], operands.names).c_str());
+    for (std::size_t k = 0; k < results.size(); ++k) {
+      const std::string layer = a.layers ? "layer " + std::to_string(k + 1) + ": " : "";
+      for (std::size_t i = shared; i < results[k].warnings.size(); ++i)
+        std::fprintf(stderr, "ember: warning: %s%s\n", layer.c_str(),
+                     name_operand(results[k].warnings[i], operands.names).c_str());
+      if (ember::format_from_path(outputs[k]) == ember::MeshFormat::Stl)
+        if (const std::size_t bad = ember::stl_degenerate_triangles(results[k].mesh))
+          std::fprintf(stderr,
+                       "ember: warning: %s: %zu triangles become degenerate in STL's float32 coordinates; "
+                       "use .ply, .obj or .off to keep the double coordinates\n",
+                       outputs[k].c_str(), bad);
+    }
+  }
+  // All outputs or none: a failed write removes the layers this run wrote.
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    try {
+      write_atomically(results[k].mesh, outputs[k], results[k].provenance);  // PLY keeps it as face properties
+    } catch (...) {
+      for (std::size_t j = 0; j < k; ++j) fs::remove(outputs[j]);
+      throw;
+    }
+  }
+  if (a.stats)
+    for (std::size_t k = 0; k < results.size(); ++k)
+      ember::cli::print_stats(results[k],
+                              (a.layers ? label + " --layers (layer " + std::to_string(k + 1) + ")" : label).c_str(),
+                              operands.names);
   return 0;
 }
 
@@ -225,7 +268,7 @@ int run_eval(const std::string& text, const BooleanArgs& a) {
     operands.names.push_back(path);
   }
   return compute_and_write(operands, read_warnings, options, a, text, [&](const ember::BooleanOptions& o) {
-    return ember::boolean(operands.meshes, parsed.expression, o);
+    return std::vector<ember::BooleanResult>{ember::boolean(operands.meshes, parsed.expression, o)};
   });
 }
 
@@ -299,6 +342,9 @@ int main(int argc, char** argv) {
         ->required()
         ->expected(1, -1);  // 2 operands: counted after reading (a 3MF file may hold several)
     sub->add_option("--min-k", args.min_k, "union only: keep the solid inside at least K operands (1..operands)");
+    sub->add_flag("--layers", args.layers,
+                  "union only: write every layer from one pass: OUT-1.ext (inside at least 1 input) .. OUT-N.ext "
+                  "(inside all N)");
     add_boolean_options(sub, args);
     subs.emplace_back(sub, c.op);
   }

@@ -122,10 +122,10 @@ void record_output(core::BuiltOutput&& out, BooleanResult& result) {
 /// Stages 2 to 4 on a non-empty input: the solve's set-up, the proof (with
 /// the solid path beside it where it can run), the route. Fills the proof's
 /// part of the result and its time.
-core::RouteResult solve(core::PreparedInput& in, Operation op, const Csg* expression, const BooleanOptions& options,
+core::RouteResult solve(core::PreparedInput& in, const core::BooleanRule& rule, const BooleanOptions& options,
                         int threads, tbb::task_arena& arena, BooleanResult& result, Clock::time_point& proved) {
   std::unique_ptr<core::SolveSetup> setup;
-  arena.execute([&] { setup = core::set_up_solve(in, op, expression, options); });
+  arena.execute([&] { setup = core::set_up_solve(in, rule, options); });
   for (std::size_t o = 0; o < setup->ctx.solid.size(); ++o)
     if (setup->ctx.solid[o]) result.stats.operands[o].solid = SolidStatus::Promised;
   std::optional<core::SolidRoute> speculative;
@@ -170,16 +170,37 @@ void check_expression(std::span<const Mesh> operands, const Csg& expression, con
           {.operand = i});
 }
 
-/// The Boolean of `op`, or of `expression` when it is given.
-BooleanResult run_boolean(std::span<const Mesh> operands, Operation op, const Csg* expression,
-                          const BooleanOptions& options) {
+/// The preconditions of layer mode (boolean_layers).
+void check_layers(std::span<const Mesh> operands, const BooleanOptions& options) {
+  if (options.indicator) throw Error("boolean_layers: options.indicator does not apply (the layers are fixed)");
+  if (options.min_k != 1) throw Error("boolean_layers: options.min_k does not apply (every k is computed)");
+  if (operands.size() > core::OutputPolygon::kMaxLayers)
+    throw Error("boolean_layers: at most " + std::to_string(core::OutputPolygon::kMaxLayers) + " operands, got " +
+                std::to_string(operands.size()));
+}
+
+/// The pieces of layer k (1-based) among a layer-mode route's.
+core::RouteResult layer_of(const core::RouteResult& all, std::size_t k) {
+  core::RouteResult layer;
+  layer.solid_path = all.solid_path;
+  layer.merged_triangles = all.merged_triangles;
+  for (const core::OutputPolygon& p : all.polys)
+    if (p.layer_lo < k && k <= p.layer_hi) layer.polys.push_back(p);
+  return layer;
+}
+
+/// The Boolean of `rule`; in layer mode one result per layer, else one.
+std::vector<BooleanResult> run_boolean(std::span<const Mesh> operands, const core::BooleanRule& rule,
+                                       const BooleanOptions& options) {
   const auto start = Clock::now();
   report(options, "prepare", 0.0);
   check_options(operands, options);
-  if (expression)
-    check_expression(operands, *expression, options);
+  if (rule.expression)
+    check_expression(operands, *rule.expression, options);
+  else if (rule.layers)
+    check_layers(operands, options);
   else if (!options.indicator)
-    indicator_for(op, operands.size(), options.min_k);  // checks min_k
+    indicator_for(rule.op, operands.size(), options.min_k);  // checks min_k
   BooleanResult result;
   const int threads = thread_count(options);
   result.stats.threads = threads;
@@ -194,32 +215,45 @@ BooleanResult run_boolean(std::span<const Mesh> operands, Operation op, const Cs
 
   Clock::time_point proved = setup_done;
   core::RouteResult route;
-  if (!in.triangles.grid.corners.empty()) route = solve(in, op, expression, options, threads, arena, result, proved);
+  if (!in.triangles.grid.corners.empty()) route = solve(in, rule, options, threads, arena, result, proved);
   times.proof_ms = ms_between(setup_done, proved);
   const auto solved = Clock::now();
   times.solve_ms = ms_between(proved, solved);
 
   report(options, "export", 0.9);
-  core::BuiltOutput out;
-  arena.execute([&] { out = core::build_output(std::move(route), in, options.output); });
-  const core::MeshOutputStats mesh_stats = out.stats;
-  record_output(std::move(out), result);
+  std::vector<BooleanResult> results;
+  const std::size_t count = rule.layers ? operands.size() : 1;
+  std::vector<core::MeshOutputStats> mesh_stats;
+  for (std::size_t k = 1; k <= count; ++k) {
+    core::BuiltOutput out;
+    core::RouteResult piece = rule.layers ? layer_of(route, k) : std::move(route);
+    arena.execute([&] { out = core::build_output(std::move(piece), in, options.output); });
+    mesh_stats.push_back(out.stats);
+    results.push_back(k < count ? result : std::move(result));
+    record_output(std::move(out), results.back());
+  }
   const auto end = Clock::now();
   times.output_ms = ms_between(solved, end);
-  result.stats.time_ms = ms_between(start, end);
-  result.stats.diagnostics = diagnostics_of(route, mesh_stats, times);
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    results[k].stats.time_ms = ms_between(start, end);
+    results[k].stats.diagnostics = diagnostics_of(route, mesh_stats[k], times);
+  }
   report(options, "done", 1.0);
-  return result;
+  return results;
 }
 
 }  // namespace
 
 BooleanResult boolean(std::span<const Mesh> operands, Operation op, const BooleanOptions& options) {
-  return run_boolean(operands, op, nullptr, options);
+  return std::move(run_boolean(operands, {.op = op}, options).front());
 }
 
 BooleanResult boolean(std::span<const Mesh> operands, const Csg& expression, const BooleanOptions& options) {
-  return run_boolean(operands, Operation::Union, &expression, options);
+  return std::move(run_boolean(operands, {.expression = &expression}, options).front());
+}
+
+std::vector<BooleanResult> boolean_layers(std::span<const Mesh> operands, const BooleanOptions& options) {
+  return run_boolean(operands, {.layers = true}, options);
 }
 
 }  // namespace ember

@@ -165,53 +165,8 @@ py::dict stats_dict(const ember::BooleanStats& s) {
   return d;
 }
 
-/// union/intersection/difference/xor(*meshes, **options), or the expression
-/// over `meshes` when one is given (then min_k is not an option).
-py::tuple run_boolean(ember::Operation op, const py::tuple& meshes, const py::kwargs& kwargs,
-                      const ember::Csg* expression = nullptr) {
-  ember::BooleanOptions options;
-  bool want_provenance = false, want_stats = false;
-  for (const auto& [key, value] : kwargs) {
-    const std::string k = py::str(key);
-    if (k == "threads")
-      options.threads = int_option(value, k, 0, 1 << 16, "0 (all cores) or a number of threads up to 65536");
-    else if (k == "allow_open")
-      options.allow_open = bool_option(value, k);
-    else if (k == "assume_solid")
-      options.all_solid = bool_option(value, k);
-    else if (k == "detect_solid")
-      options.detect_solid = bool_option(value, k);
-    else if (k == "return_provenance")
-      want_provenance = bool_option(value, k);
-    else if (k == "return_stats")
-      want_stats = bool_option(value, k);
-    else if (k == "min_k" && op == ember::Operation::Union && !expression) {
-      if (!value.is_none()) {
-        op = ember::Operation::AtLeastK;
-        const auto n = static_cast<long long>(meshes.size());
-        options.min_k =
-            int_option(value, k, 1, std::max(n, 1LL), "from 1 to the number of meshes (" + std::to_string(n) + ")");
-      }
-    } else {
-      throw py::type_error("unexpected keyword argument '" + k +
-                           "' (options: threads, allow_open, assume_solid, detect_solid, return_provenance, "
-                           "return_stats; union also min_k; for expressions use ember.at_least)");
-    }
-  }
-  std::vector<ember::Mesh> operands;
-  operands.reserve(meshes.size());
-  for (std::size_t i = 0; i < meshes.size(); ++i)
-    operands.push_back(to_mesh(meshes[i], "operand " + std::to_string(i)));
-
-  ember::BooleanResult r;
-  {
-    // The exact core runs on its own threads and touches no Python object.
-    py::gil_scoped_release release;
-    r = expression ? ember::boolean(operands, *expression, options) : ember::boolean(operands, op, options);
-  }
-  for (const std::string& w : r.warnings)
-    if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 1) != 0) throw py::error_already_set();
-
+/// A result as Python returns it: (vertices, faces[, provenance][, stats]).
+py::tuple packed(const ember::BooleanResult& r, bool want_provenance, bool want_stats) {
   std::vector<std::size_t> face_of;
   py::tuple arrays = to_arrays(r.mesh, &face_of);
   py::list out;
@@ -229,6 +184,69 @@ py::tuple run_boolean(ember::Operation op, const py::tuple& meshes, const py::kw
   }
   if (want_stats) out.append(stats_dict(r.stats));
   return py::tuple(out);
+}
+
+/// union/intersection/difference/xor(*meshes, **options), the expression
+/// over `meshes` when one is given, or every layer (a list of results) with
+/// `layers`; min_k is an option of union alone.
+py::object run_boolean(ember::Operation op, const py::tuple& meshes, const py::kwargs& kwargs,
+                       const ember::Csg* expression = nullptr, bool layers = false) {
+  ember::BooleanOptions options;
+  bool want_provenance = false, want_stats = false;
+  for (const auto& [key, value] : kwargs) {
+    const std::string k = py::str(key);
+    if (k == "threads")
+      options.threads = int_option(value, k, 0, 1 << 16, "0 (all cores) or a number of threads up to 65536");
+    else if (k == "allow_open")
+      options.allow_open = bool_option(value, k);
+    else if (k == "assume_solid")
+      options.all_solid = bool_option(value, k);
+    else if (k == "detect_solid")
+      options.detect_solid = bool_option(value, k);
+    else if (k == "return_provenance")
+      want_provenance = bool_option(value, k);
+    else if (k == "return_stats")
+      want_stats = bool_option(value, k);
+    else if (k == "min_k" && op == ember::Operation::Union && !expression && !layers) {
+      if (!value.is_none()) {
+        op = ember::Operation::AtLeastK;
+        const auto n = static_cast<long long>(meshes.size());
+        options.min_k =
+            int_option(value, k, 1, std::max(n, 1LL), "from 1 to the number of meshes (" + std::to_string(n) + ")");
+      }
+    } else {
+      throw py::type_error("unexpected keyword argument '" + k +
+                           "' (options: threads, allow_open, assume_solid, detect_solid, return_provenance, "
+                           "return_stats; union also min_k; for expressions use ember.at_least)");
+    }
+  }
+  std::vector<ember::Mesh> operands;
+  operands.reserve(meshes.size());
+  for (std::size_t i = 0; i < meshes.size(); ++i)
+    operands.push_back(to_mesh(meshes[i], "operand " + std::to_string(i)));
+
+  std::vector<ember::BooleanResult> results;
+  {
+    // The exact core runs on its own threads and touches no Python object.
+    py::gil_scoped_release release;
+    if (layers)
+      results = ember::boolean_layers(operands, options);
+    else
+      results.push_back(expression ? ember::boolean(operands, *expression, options)
+                                   : ember::boolean(operands, op, options));
+  }
+  // Layers share the input's warnings: warned once.
+  std::size_t k = 0;
+  for (const ember::BooleanResult& r : results) {
+    for (std::size_t w = 0; w < r.warnings.size(); ++w)
+      if (k == 0 || w >= results[0].warnings.size() || r.warnings[w] != results[0].warnings[w])
+        if (PyErr_WarnEx(PyExc_RuntimeWarning, r.warnings[w].c_str(), 1) != 0) throw py::error_already_set();
+    ++k;
+  }
+  if (!layers) return packed(results[0], want_provenance, want_stats);
+  py::list out;
+  for (const ember::BooleanResult& r : results) out.append(packed(r, want_provenance, want_stats));
+  return out;
 }
 
 /// An expression over Python meshes: an ember::Csg over `operands`, which
@@ -352,6 +370,12 @@ PYBIND11_MODULE(ember, m) {
         return run_boolean(ember::Operation::Union, py::tuple(py::cast(e.operands)), k, &e.expression);
       },
       py::arg("expression"), "evaluate(expression, **options): the same as expression.evaluate(**options).");
+  m.def(
+      "layers",
+      [](const py::args& a, const py::kwargs& k) { return run_boolean(ember::Operation::Union, a, k, nullptr, true); },
+      "layers(*meshes, threads=0, allow_open=False, assume_solid=False, detect_solid=True, return_provenance=False, "
+      "return_stats=False) -> [layer 1, ..., layer n]: every layer from one pass; layer k (a (vertices, faces[, ...]) "
+      "tuple as union returns) is the solid inside at least k meshes.");
   m.def(
       "at_least",
       [](const py::args& terms) {

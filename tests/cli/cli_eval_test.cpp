@@ -150,3 +150,39 @@ TEST(CliEval, ThreadsDoNotChangeTheBytesAndTheOptionsApply) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(CliLayers, UnionLayersWriteOneFilePerLayerWithTheExactVolumes) {
+  TempDir dir;
+  put_boxes(dir);
+  const RunResult r = run_cli(dir, {"union", "a.obj", "b.stl", "c.ply", "d.off", "--layers", "-o", "L.obj", "--stats"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  // Each layer equals the --min-k run of its k.
+  double stacked = 0;
+  for (int k = 1; k <= 4; ++k) {
+    const std::string layer = "L-" + std::to_string(k) + ".obj";
+    ASSERT_TRUE(fs::exists(dir / layer)) << layer;
+    ASSERT_EQ(run_cli(dir, {"union", "a.obj", "b.stl", "c.ply", "d.off", "--min-k", std::to_string(k), "-o", "k.obj"})
+                  .exit_code,
+              0);
+    EXPECT_EQ(volume_of(dir, layer), volume_of(dir, "k.obj")) << layer;
+    stacked += volume_of(dir, layer);
+    EXPECT_NE(r.err.find("\"operation\": \"union --layers (layer " + std::to_string(k) + ")\""), std::string::npos);
+  }
+  EXPECT_EQ(stacked, 8 + 8 + 5 + 22.5);  // the operands' volumes
+  EXPECT_FALSE(fs::exists(dir / "L-5.obj"));
+}
+
+TEST(CliLayers, LayersApplyToUnionAloneAndNotWithMinK) {
+  TempDir dir;
+  put_boxes(dir);
+  RunResult r = run_cli(dir, {"intersection", "a.obj", "b.stl", "--layers", "-o", "L.obj"});
+  EXPECT_EQ(r.exit_code, 2) << describe(r);
+  EXPECT_NE(r.err.find("--layers applies to 'union' only"), std::string::npos) << r.err;
+  r = run_cli(dir, {"union", "a.obj", "b.stl", "--layers", "--min-k", "2", "-o", "L.obj"});
+  EXPECT_EQ(r.exit_code, 2) << describe(r);
+  EXPECT_TRUE(dir.listing().count("L-1.obj") == 0);
+}
+
+}  // namespace

@@ -332,6 +332,17 @@ class Expressions(unittest.TestCase):
         one, two = e.evaluate(threads=1), e.evaluate(threads=2)
         self.assertTrue(np.array_equal(one[0], two[0]) and np.array_equal(one[1], two[1]))
 
+    def test_layers_come_from_one_call_and_stack_up(self):
+        layers = ember.layers(self.a, self.b, self.c, self.d, threads=2)
+        self.assertEqual(len(layers), 4)
+        for k, layer in enumerate(layers, start=1):
+            self.assertEqual(volume(layer), volume(ember.union(self.a, self.b, self.c, self.d, min_k=k)))
+        self.assertEqual(sum(volume(layer) for layer in layers), 8 + 8 + 5 + 22.5)
+        v, f, stats = ember.layers(self.a, self.b, return_stats=True)[1]
+        self.assertEqual(volume((v, f)), 1.0)
+        with self.assertRaises(TypeError):
+            ember.layers(self.a, self.b, min_k=2)
+
     def test_misuse_raises_errors_that_name_the_argument(self):
         a, b = ember.Csg(self.a), ember.Csg(self.b)
         with self.assertRaises(TypeError):

@@ -94,6 +94,22 @@ inline BooleanResult run_checked(std::initializer_list<Mesh> ops, Operation op, 
   return run_checked(std::span<const Mesh>(ops.begin(), ops.size()), op, opt, convex_tol);
 }
 
+/// Four overlapping curved solids (sphere, torus, box, cylinder), snapped so
+/// that volume identities hold exactly (shapes.hpp: snapped).
+inline std::vector<Mesh> four_solids() {
+  return snapped({icosphere({0, 0, 0}, 1.0, 3), rotate(torus({0.4, 0.1, 0.0}, 0.9, 0.3, 40, 16), random_rotation(5)),
+                  translate(rotate(box({-0.6, -0.6, -0.6}, {0.6, 0.6, 0.6}), random_rotation(9)), {0.5, 0.3, 0.2}),
+                  cylinder({-0.2, 0.1, -1.2}, 0.45, 2.4, 32)});
+}
+
+/// Options for the general path: no promise and no proof, so no operand is
+/// solid and the subdivision with its early terminations solves it.
+inline BooleanOptions general_path() {
+  BooleanOptions o;
+  o.detect_solid = false;
+  return o;
+}
+
 /// Options with a custom indicator.
 inline BooleanOptions with_indicator(Indicator f) {
   BooleanOptions o;

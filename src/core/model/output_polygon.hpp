@@ -28,20 +28,28 @@ struct OutputPolygon {
   std::uint32_t path = kNoPath;
   /// How many subdivision splits made the piece (SoupPolygon::splits).
   std::uint8_t splits = 0;
-  bool flip = false;  ///< emit with reversed orientation (in-out transition)
+  // Bit-fields keep the struct at 48 bytes with the layer range below.
+  bool flip : 1 = false;  ///< emit with reversed orientation (in-out transition)
   /// The polygon is the whole subdivision piece its source triangle had in
   /// the box that emitted it (no leaf cut or trimmed it).
-  bool whole_piece = false;
+  bool whole_piece : 1 = false;
   /// Nothing else in the output can touch it but along its own edges and at
   /// its corners: an unbuilt triangle whose three edges it shares with whole
   /// triangles of its operand that no other operand comes near (the solid
   /// path's interior triangles, solid_route.hpp). No vertex lies inside its
   /// edges and none of its corners inside another polygon's edge, so the
   /// mesh stage passes it through as it is.
-  bool settled = false;
+  bool settled : 1 = false;
+  /// Layer mode (SolveContext::layers): the piece bounds the layers k with
+  /// layer_lo < k <= layer_hi, the counts of operands containing the points
+  /// on its two sides; the side with more is inside those layers.
+  std::uint8_t layer_lo = 0, layer_hi = 0;
 
   static constexpr std::uint32_t kNoPath = UINT32_MAX;
+  /// The most operands layer mode can count (layer_lo, layer_hi).
+  static constexpr std::size_t kMaxLayers = 255;
 };
+static_assert(sizeof(OutputPolygon) <= 48, "output pieces are the largest buffer of a solve: keep them small");
 
 /// The whole input triangle, without stored vertices.
 inline bool unbuilt(const OutputPolygon& p) { return p.vertices.empty() && p.path == OutputPolygon::kNoPath; }

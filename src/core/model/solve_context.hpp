@@ -1,6 +1,8 @@
 #pragma once
 // What every route is told about the Boolean: the indicator and what is known of the operands.
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <vector>
@@ -10,6 +12,13 @@
 #include "ember/csg.hpp"
 
 namespace ember::core {
+
+/// How the result crosses a surface piece (SolveContext::crossing).
+struct Crossing {
+  bool emitted = false;         ///< the piece is on the result's surface
+  bool flip = false;            ///< emitted reversed: the result lies in front of it
+  std::uint8_t lo = 0, hi = 0;  ///< layer mode: the layers it bounds (OutputPolygon::layer_lo, layer_hi)
+};
 
 struct SolveContext {
   std::size_t operands = 0;
@@ -24,6 +33,11 @@ struct SolveContext {
   /// three-valued evaluation (`Csg::value_over`) gives the early
   /// terminations what `over_free` gives a built-in operation.
   const Csg* expression = nullptr;
+  /// Layer mode (ember::boolean_layers): every piece where the count of
+  /// operands containing the point changes is emitted, with the layers it
+  /// bounds, so one solve gives every "inside at least k" layer. No early
+  /// termination applies (op and expression are unset).
+  bool layers = false;
   /// Per operand: closed (every directed edge matched by an opposite one), so
   /// its winding number changes only across its surface. Lets the leaf skip
   /// cuts along coplanar polygons' edges (see docs/design.md).
@@ -42,6 +56,21 @@ struct SolveContext {
   /// custom indicator.
   int over_free(std::size_t inside_count, std::size_t free, int first) const {
     return op ? inside_over_free(*op, min_k, operands, inside_count, free, first) : -1;
+  }
+
+  /// The result's crossing of a piece with winding numbers `front` and
+  /// `back` on its two sides.
+  Crossing crossing(const Wnv& front, const Wnv& back) const {
+    if (layers) {
+      std::size_t f = 0, b = 0;
+      for (std::size_t i = 0; i < front.size(); ++i) {
+        f += front[i] != 0;
+        b += back[i] != 0;
+      }
+      return {f != b, f > b, static_cast<std::uint8_t>(std::min(f, b)), static_cast<std::uint8_t>(std::max(f, b))};
+    }
+    const bool in_front = inside(front), in_back = inside(back);
+    return {in_front != in_back, in_front, 0, 0};
   }
 };
 

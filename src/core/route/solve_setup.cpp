@@ -21,16 +21,17 @@ Subproblem root_shell(const PreparedInput& input, std::size_t operands) {
 
 }  // namespace
 
-std::unique_ptr<SolveSetup> set_up_solve(PreparedInput& input, Operation op, const Csg* expression,
-                                         const BooleanOptions& options) {
+std::unique_ptr<SolveSetup> set_up_solve(PreparedInput& input, const BooleanRule& rule, const BooleanOptions& options) {
   const std::size_t operands = input.open_edges.size();
   auto s = std::make_unique<SolveSetup>();
   s->input = &input;
-  if (expression) {
-    s->expression = *expression;
+  if (rule.expression) {
+    s->expression = *rule.expression;
     s->indicator = [&e = *s->expression](WindingVector w) { return e.inside(w); };
+  } else if (rule.layers) {
+    s->indicator = indicator_for(Operation::Union, operands);  // the crossing counts instead (ctx.layers)
   } else {
-    s->indicator = options.indicator ? options.indicator : indicator_for(op, operands, options.min_k);
+    s->indicator = options.indicator ? options.indicator : indicator_for(rule.op, operands, options.min_k);
   }
   // Its soup is built where the general path or a proof's scan needs it.
   s->root =
@@ -38,10 +39,11 @@ std::unique_ptr<SolveSetup> set_up_solve(PreparedInput& input, Operation op, con
   SolveContext& ctx = s->ctx;
   ctx.operands = operands;
   ctx.inside = [&indicator = s->indicator](const Wnv& w) { return indicator(WindingVector(w.data(), w.size())); };
-  if (expression) {
+  ctx.layers = rule.layers;
+  if (rule.expression) {
     ctx.expression = &*s->expression;
-  } else if (!options.indicator) {
-    ctx.op = op;
+  } else if (!options.indicator && !rule.layers) {
+    ctx.op = rule.op;
     ctx.min_k = options.min_k;
   }
   ctx.solid.assign(operands, options.all_solid ? 1 : 0);
@@ -53,7 +55,9 @@ std::unique_ptr<SolveSetup> set_up_solve(PreparedInput& input, Operation op, con
     may_all_be_solid &= ctx.solid[o] || (options.detect_solid && input.open_edges[o] == 0);
   if (may_all_be_solid) s->trees = build_operand_trees(input.triangles.operand_begin, input.triangles.grid.corners);
   if (input.topology) input.topology->by_triangle = input.triangles.grid.vertex_ids;
-  s->direct_allowed = input.topology && operands == 2 && options.output == BooleanOptions::Output::Triangles;
+  // The direct route makes one mesh; layer mode needs the pieces of all.
+  s->direct_allowed =
+      input.topology && operands == 2 && options.output == BooleanOptions::Output::Triangles && !rule.layers;
   return s;
 }
 

@@ -36,10 +36,17 @@ struct SolveSetup {
   }
 };
 
+/// What the Boolean computes: `op` (with BooleanOptions::min_k or
+/// ::indicator), `expression` when it is set, or every layer in layer mode.
+struct BooleanRule {
+  Operation op = Operation::Union;
+  const Csg* expression = nullptr;
+  bool layers = false;
+};
+
 /// The set-up of the solve over `input`'s grid triangles (which must have
-/// some) for `op`, or for `expression` when it is given. Builds the trees
-/// inside the caller's task arena.
-std::unique_ptr<SolveSetup> set_up_solve(PreparedInput& input, Operation op, const Csg* expression,
+/// some) for `rule`. Builds the trees inside the caller's task arena.
+std::unique_ptr<SolveSetup> set_up_solve(PreparedInput& input, const BooleanRule& rule,
                                          const BooleanOptions& options);
 
 }  // namespace ember::core

@@ -12,20 +12,6 @@ namespace {
 
 using Op = Operation;
 
-/// Four overlapping curved solids, snapped so that volume identities hold
-/// exactly (support/shapes.hpp).
-std::vector<Mesh> four_solids() {
-  return snapped({icosphere({0, 0, 0}, 1.0, 3), rotate(torus({0.4, 0.1, 0.0}, 0.9, 0.3, 40, 16), random_rotation(5)),
-                  translate(rotate(box({-0.6, -0.6, -0.6}, {0.6, 0.6, 0.6}), random_rotation(9)), {0.5, 0.3, 0.2}),
-                  cylinder({-0.2, 0.1, -1.2}, 0.45, 2.4, 32)});
-}
-
-BooleanOptions general_path() {
-  BooleanOptions o;
-  o.detect_solid = false;  // no proof: the general path with its early terminations
-  return o;
-}
-
 bool same_bytes(const BooleanResult& a, const BooleanResult& b) {
   if (a.mesh.indices != b.mesh.indices || a.mesh.face_offsets != b.mesh.face_offsets) return false;
   if (a.mesh.vertices.size() != b.mesh.vertices.size()) return false;

@@ -528,12 +528,12 @@ void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafInd
   std::vector<OutputPolygon> produced;
   std::vector<std::size_t> produced_from(end - begin);
   // `whole`: f is all of t (t's subdivision piece), uncut and untrimmed.
-  const auto emit = [&](const SoupPolygon& t, const Polygon& f, bool in_front, bool in_back, bool whole) {
-    if (in_front == in_back) return;
+  const auto emit = [&](const SoupPolygon& t, const Polygon& f, const Crossing& crossing, bool whole) {
+    if (!crossing.emitted) return;
     if (whole) {
       // f is t's whole subdivision piece: emitted without its vertices
       // (unbuilt or by path, solve.hpp), like the early-outs' pieces.
-      produced.push_back(whole_piece_output(t, in_front));
+      produced.push_back(whole_piece_output(t, crossing));
       return;
     }
     // The mesh stage needs a cut piece's vertices, not its edge planes.
@@ -542,7 +542,9 @@ void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafInd
     piece.corners = t.corners;
     piece.id = t.id;
     piece.operand = t.operand;
-    piece.flip = in_front;
+    piece.flip = crossing.flip;
+    piece.layer_lo = crossing.lo;
+    piece.layer_hi = crossing.hi;
     piece.splits = t.splits;
     produced.push_back(std::move(piece));
   };
@@ -599,7 +601,7 @@ void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafInd
         const int vf = side_value(ctx, w_front, scratch.free_front, scratch.stamp, scratch.n_front);
         const int vb = side_value(ctx, w_back, scratch.free_back, scratch.stamp, scratch.n_back);
         if (vf >= 0 && vb >= 0) {
-          emit(t, pieces[n].poly, vf != 0, vb != 0, uncovered);
+          emit(t, pieces[n].poly, Crossing{vf != vb, vf != 0}, uncovered);
           if (share) known.record(pieces[n].poly, w_front, w_back, need_front, need_back);
           continue;
         }
@@ -613,7 +615,7 @@ void solve_polygons(const Subproblem& pb, const SolveContext& ctx, const LeafInd
         bool full = exact && sub.size() == 1;
         if (!full && share) full = known.find(sub[m].poly, all, all, w_front, w_back, full) && full;
         if (!full) classify_or_throw(t, sub[m].poly, seed + m);
-        emit(t, sub[m].poly, ctx.inside(w_front), ctx.inside(w_back), uncovered && sub.size() == 1);
+        emit(t, sub[m].poly, ctx.crossing(w_front, w_back), uncovered && sub.size() == 1);
         if (share) known.record(sub[m].poly, w_front, w_back, all, all);
       }
     }

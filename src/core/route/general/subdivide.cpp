@@ -253,12 +253,14 @@ void split_soup(Soup&& soup, int axis, std::int64_t position, Soup& left, Soup& 
 
 }  // namespace
 
-OutputPolygon whole_piece_output(const SoupPolygon& p, bool flip) {
+OutputPolygon whole_piece_output(const SoupPolygon& p, const Crossing& crossing) {
   OutputPolygon out;
   out.corners = p.corners;
   out.id = p.id;
   out.operand = p.operand;
-  out.flip = flip;
+  out.flip = crossing.flip;
+  out.layer_lo = crossing.lo;
+  out.layer_hi = crossing.hi;
   out.whole_piece = true;
   out.splits = p.splits;
   if (p.splits > 0) out.path = 0;  // the subproblem's own path (solve() numbers them)
@@ -279,10 +281,10 @@ bool emit_single_solid(Subproblem& pb, const SolveContext& ctx, const SoupSummar
   Wnv front = pb.ref_w, back = pb.ref_w;
   front[o] = 0;
   back[o] = 1;
-  const bool in_front = ctx.inside(front), in_back = ctx.inside(back);
-  if (in_front == in_back) return true;
+  const Crossing c = ctx.crossing(front, back);
+  if (!c.emitted) return true;
   out.reserve(pb.soup.size());
-  for (const SoupPolygon& p : pb.soup) out.push_back(whole_piece_output(p, in_front));
+  for (const SoupPolygon& p : pb.soup) out.push_back(whole_piece_output(p, c));
   return true;
 }
 

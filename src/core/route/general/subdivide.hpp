@@ -39,6 +39,6 @@ SolveOutput solve(Subproblem&& problem, const SolveContext& ctx);
 /// The output form of soup polygon p, a whole subdivision piece: unbuilt if no
 /// split cut its triangle, else by path (path 0: the emitting subproblem's,
 /// which solve() numbers).
-OutputPolygon whole_piece_output(const SoupPolygon& p, bool flip);
+OutputPolygon whole_piece_output(const SoupPolygon& p, const Crossing& crossing);
 
 }  // namespace ember::core

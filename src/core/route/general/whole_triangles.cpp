@@ -37,7 +37,8 @@ std::size_t merge_whole_triangles(std::vector<OutputPolygon>& polys) {
     const OutputPolygon& p = polys[i];
     if (first[p.id] == UINT32_MAX) {
       first[p.id] = static_cast<std::uint32_t>(i);
-    } else if (polys[first[p.id]].flip != p.flip) {
+    } else if (const OutputPolygon& q = polys[first[p.id]];
+               q.flip != p.flip || q.layer_lo != p.layer_lo || q.layer_hi != p.layer_hi) {
       mixed[p.id] = 1;
     }
     if (!p.whole_piece || p.splits > kMaxExactSplits) {

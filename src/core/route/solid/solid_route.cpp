@@ -333,13 +333,15 @@ namespace {
 /// The output form of grid triangle `id` (of `operand`) whole (unbuilt), or
 /// of one of its pieces.
 OutputPolygon output_of(const GridTriangles& grid, std::uint32_t id, std::uint32_t operand, const Polygon* piece,
-                        bool flip) {
+                        const Crossing& crossing) {
   OutputPolygon out;
   if (piece) out.vertices.assign(piece->vertices.begin(), piece->vertices.end());
   out.corners = &grid.corners[id];
   out.id = id;
   out.operand = operand;
-  out.flip = flip;
+  out.flip = crossing.flip;
+  out.layer_lo = crossing.lo;
+  out.layer_hi = crossing.hi;
   out.whole_piece = !piece;
   return out;
 }
@@ -472,24 +474,29 @@ class SolidSolver {
   /// Selected in parallel (a serial push_back of every kept triangle was
   /// most of a large, lightly touched Boolean's solve, and slower at 2
   /// threads than at 1).
-  FillVector<KeptTriangle> kept_untouched() const {
-    std::vector<char> keep(comps_.roots.size());
+  FillVector<KeptTriangle> kept_untouched(const std::vector<Crossing>& crossings) const {
+    return parallel_select<KeptTriangle>(
+        grid_.corners.size(), [&](std::size_t i) { return !touched_[i] && crossings[comps_.index[i]].emitted; },
+        [&](std::size_t i) {
+          return KeptTriangle{static_cast<std::uint32_t>(i), crossings[comps_.index[i]].flip};
+        });
+  }
+
+  /// Per component, how the result crosses its untouched triangles.
+  std::vector<Crossing> component_crossings() const {
+    std::vector<Crossing> crossings(comps_.roots.size());
     Wnv front, back;
     for (std::size_t k = 0; k < comps_.roots.size(); ++k) {
       component_w(comps_.roots[k], front, back);
-      bool flip = false;
-      keep[k] = emitted(front, back, flip) ? (flip ? 2 : 1) : 0;
+      crossings[k] = ctx_.crossing(front, back);
     }
-    return parallel_select<KeptTriangle>(
-        grid_.corners.size(), [&](std::size_t i) { return !touched_[i] && keep[comps_.index[i]] != 0; },
-        [&](std::size_t i) {
-          return KeptTriangle{static_cast<std::uint32_t>(i), keep[comps_.index[i]] == 2};
-        });
+    return crossings;
   }
 
   /// Step 4: the kept untouched triangles by id, then the chunks in order.
   std::vector<OutputPolygon> output(std::vector<std::vector<OutputPolygon>> chunk_out) const {
-    const FillVector<KeptTriangle> kept = kept_untouched();
+    const std::vector<Crossing> crossings = component_crossings();
+    const FillVector<KeptTriangle> kept = kept_untouched(crossings);
     std::vector<std::size_t> at(chunk_out.size() + 1, kept.size());
     for (std::size_t c = 0; c < chunk_out.size(); ++c) at[c + 1] = at[c] + chunk_out[c].size();
     std::vector<OutputPolygon> out(at.back());
@@ -501,7 +508,7 @@ class SolidSolver {
                         for (std::size_t k = r.begin(); k != r.end(); ++k) {
                           const std::uint32_t id = kept[k].id;
                           OutputPolygon& o = out[k];
-                          o = output_of(grid_, id, trees_.operand_of(id), nullptr, kept[k].flip);
+                          o = output_of(grid_, id, trees_.operand_of(id), nullptr, crossings[comps_.index[id]]);
                           o.settled = std::none_of(grid_.neighbors[id].begin(), grid_.neighbors[id].end(),
                                                    [&](std::uint32_t j) { return j == kNoNeighbor || touched_[j]; });
                         }
@@ -558,8 +565,8 @@ class SolidSolver {
         const Polygon& f = pieces[m].poly;
         cs.windings.get(m, cs.front, cs.back);
         cs.handover.record(f, cs.front, cs.back);
-        bool flip = false;
-        if (emitted(cs.front, cs.back, flip)) out.push_back(output_of(grid_, id, o, whole ? nullptr : &f, flip));
+        const Crossing c = ctx_.crossing(cs.front, cs.back);
+        if (c.emitted) out.push_back(output_of(grid_, id, o, whole ? nullptr : &f, c));
       }
     }
     return true;
@@ -663,14 +670,6 @@ class SolidSolver {
     back.assign(at + static_cast<std::ptrdiff_t>(operands_), at + static_cast<std::ptrdiff_t>(2 * operands_));
   }
 
-  /// Whether a surface with these winding numbers in front and behind is
-  /// part of the result, and if so whether it is emitted reversed.
-  bool emitted(const Wnv& front, const Wnv& back, bool& flip) const {
-    const bool in_front = ctx_.inside(front), in_back = ctx_.inside(back);
-    flip = in_front;
-    return in_front != in_back;
-  }
-
   const GridTriangles& grid_;
   const SolveContext& ctx_;
   const OperandTrees& trees_;
@@ -706,7 +705,7 @@ std::optional<FillVector<KeptTriangle>> solid_untouched(const GridTriangles& gri
                                                         const Partners& partners, const std::atomic<bool>& stop) {
   SolidSolver solver(grid, box, ctx, trees, partners, stop);
   if (!solver.classify_components()) return std::nullopt;
-  return solver.kept_untouched();
+  return solver.kept_untouched(solver.component_crossings());
 }
 
 }  // namespace ember::core
