@@ -185,7 +185,7 @@ int compute_and_write(const ember::cli::Operands& operands, const std::vector<st
                       Compute&& compute) {
   std::size_t triangles = 0;
   for (const ember::Mesh& m : operands.meshes) triangles += m.triangle_count();
-  g_activity = "the Boolean of " + std::to_string(triangles) + " triangles";
+  g_activity = "computing the Boolean of " + std::to_string(triangles) + " triangles";
   if (!a.quiet)
     for (const std::string& w : read_warnings) std::fprintf(stderr, "ember: warning: %s\n", w.c_str());
   std::vector<ember::BooleanResult> results;

@@ -159,4 +159,38 @@ TEST(CliErrors, OutOfMemoryWhileReadingSaysSo) {
 #endif
 }
 
+TEST(CliErrors, OutOfMemoryDuringTheBooleanSaysSo) {
+#ifdef EMBER_TEST_ASAN
+  GTEST_SKIP() << "AddressSanitizer reserves more address space than the limit this test sets";
+#else
+  TempDir dir;
+  // Two combs of 600 thin slabs each, crossing at right angles: 14,400 input
+  // triangles whose union has 360,000 crossings, far more than 1 GB of
+  // memory holds (unlimited, it passes 1.7 GB), while reading them takes
+  // little.
+  const auto comb = [](int axis) {
+    std::vector<ember::Mesh> slabs;
+    for (int i = 0; i < 600; ++i) {
+      ember::Vec3d lo{0, 0, 0}, hi{600, 600, 1};
+      (axis == 0 ? lo.x : lo.y) = i + 0.25;
+      (axis == 0 ? hi.x : hi.y) = i + 0.75;
+      slabs.push_back(ember::test::box(lo, hi));
+    }
+    return ember::test::merge(slabs);
+  };
+  ember::write_mesh(comb(0), dir / "a.obj");
+  ember::write_mesh(comb(1), dir / "b.obj");
+  const std::string cmd = "cd " + shell_quote(dir.work().string()) + " && ulimit -v 1000000 && " +
+                          shell_quote(cli_path()) + " union a.obj b.obj -o o.obj --threads 2 2>" +
+                          shell_quote((dir.io() / "err.txt").string());
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  const std::string err = read_file(dir.io() / "err.txt");
+  EXPECT_TRUE(has(err, "ember: out of memory while computing the Boolean of 14400 triangles")) << err;
+  EXPECT_FALSE(has(err, "unexpected error")) << err;
+  EXPECT_FALSE(fs::exists(dir / "o.obj"));
+#endif
+}
+
 }  // namespace
