@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace ember {
@@ -28,6 +29,13 @@ struct Mesh {
   std::vector<std::uint32_t> indices;
   /// Face f uses indices[face_offsets[f] .. face_offsets[f+1]). Always starts with 0.
   std::vector<std::uint32_t> face_offsets{0};
+  /// Optional, empty or one per face: the face's group (a material, an OBJ
+  /// `usemtl`). A Boolean gives each output face its source face's group and
+  /// never merges coplanar faces of different groups (docs/cpp-api.md, "Face groups").
+  std::vector<std::uint32_t> face_groups;
+  /// Optional names of the groups: group g is called group_names[g] where
+  /// that exists and is not empty.
+  std::vector<std::string> group_names;
 
   std::size_t face_count() const { return face_offsets.size() - 1; }
   std::size_t face_size(std::size_t f) const { return face_offsets[f + 1] - face_offsets[f]; }

@@ -22,6 +22,7 @@
 #include <optional>
 #include <string>
 
+#include "core/input/face_groups.hpp"
 #include "core/input/prepare.hpp"
 #include "core/output/build_output.hpp"
 #include "core/proof/prove.hpp"
@@ -170,6 +171,26 @@ void check_expression(std::span<const Mesh> operands, const Csg& expression, con
           {.operand = i});
 }
 
+/// The face group of every source id (empty without groups).
+std::vector<std::uint32_t> groups_by_source(const core::FaceGroups& groups, std::span<const Provenance> sources) {
+  std::vector<std::uint32_t> out;
+  if (groups.empty()) return out;
+  out.resize(sources.size());
+  for (std::size_t id = 0; id < sources.size(); ++id) out[id] = groups.group(sources[id].operand, sources[id].face);
+  return out;
+}
+
+/// Each output face in its source face's group; the names, if any group has one.
+void assign_groups(const core::FaceGroups& groups, BooleanResult& r) {
+  if (groups.empty()) return;
+  r.mesh.face_groups.resize(r.provenance.size());
+  for (std::size_t f = 0; f < r.provenance.size(); ++f)
+    r.mesh.face_groups[f] = groups.group(r.provenance[f].operand, r.provenance[f].face);
+  const std::vector<std::string>& names = groups.names();
+  if (std::any_of(names.begin(), names.end(), [](const std::string& n) { return !n.empty(); }))
+    r.mesh.group_names = names;
+}
+
 /// The preconditions of layer mode (boolean_layers).
 void check_layers(std::span<const Mesh> operands, const BooleanOptions& options) {
   if (options.indicator) throw Error("boolean_layers: options.indicator does not apply (the layers are fixed)");
@@ -201,6 +222,7 @@ std::vector<BooleanResult> run_boolean(std::span<const Mesh> operands, const cor
     check_layers(operands, options);
   else if (!options.indicator)
     indicator_for(rule.op, operands.size(), options.min_k);  // checks min_k
+  const core::FaceGroups groups = core::FaceGroups::of(operands);
   BooleanResult result;
   const int threads = thread_count(options);
   result.stats.threads = threads;
@@ -209,6 +231,7 @@ std::vector<BooleanResult> run_boolean(std::span<const Mesh> operands, const cor
   core::PreparedInput in;
   arena.execute([&] { in = core::prepare_input(operands, options.allow_open); });
   record_input(in, result);
+  const std::vector<std::uint32_t> source_groups = groups_by_source(groups, in.triangles.sources);
   const auto setup_done = Clock::now();
   PhaseTimes times;
   times.setup_ms = ms_between(start, setup_done);
@@ -227,10 +250,11 @@ std::vector<BooleanResult> run_boolean(std::span<const Mesh> operands, const cor
   for (std::size_t k = 1; k <= count; ++k) {
     core::BuiltOutput out;
     core::RouteResult piece = rule.layers ? layer_of(route, k) : std::move(route);
-    arena.execute([&] { out = core::build_output(std::move(piece), in, options.output); });
+    arena.execute([&] { out = core::build_output(std::move(piece), in, options.output, source_groups); });
     mesh_stats.push_back(out.stats);
     results.push_back(k < count ? result : std::move(result));
     record_output(std::move(out), results.back());
+    assign_groups(groups, results.back());
   }
   const auto end = Clock::now();
   times.output_ms = ms_between(solved, end);

@@ -1,6 +1,7 @@
-// Wavefront OBJ: only `v` and `f` matter for a mesh; every other statement of
-// the format is recognised and skipped, and anything unrecognised is an error
-// so that a non-OBJ file never reads as a silently empty mesh.
+// Wavefront OBJ: `v` and `f` make the mesh and `usemtl` its face groups
+// (Mesh::face_groups, named by material); every other statement of the format
+// is recognised and skipped, and anything unrecognised is an error so that a
+// non-OBJ file never reads as a silently empty mesh.
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -14,11 +15,11 @@ namespace ember {
 namespace {
 
 bool is_ignored_statement(std::string_view kw) {
-  static constexpr std::array<std::string_view, 40> kIgnored = {
-      "vt",     "vn",     "vp",   "g",     "o",        "s",        "usemtl",     "mtllib",    "l",      "p",
-      "maplib", "usemap", "lod",  "bevel", "c_interp", "d_interp", "shadow_obj", "trace_obj", "cstype", "deg",
-      "bmat",   "step",   "curv", "curv2", "surf",     "parm",     "trim",       "hole",      "scrv",   "sp",
-      "end",    "con",    "mg",   "call",  "csh",      "ctech",    "stech",      "bsp",       "bzp",    "res"};
+  static constexpr std::array<std::string_view, 39> kIgnored = {
+      "vt",     "vn",   "vp",    "g",        "o",        "s",          "mtllib",    "l",      "p",   "maplib",
+      "usemap", "lod",  "bevel", "c_interp", "d_interp", "shadow_obj", "trace_obj", "cstype", "deg", "bmat",
+      "step",   "curv", "curv2", "surf",     "parm",     "trim",       "hole",      "scrv",   "sp",  "end",
+      "con",    "mg",   "call",  "csh",      "ctech",    "stech",      "bsp",       "bzp",    "res"};
   return std::find(kIgnored.begin(), kIgnored.end(), kw) != kIgnored.end();
 }
 
@@ -41,6 +42,10 @@ Mesh read_obj(std::string_view bytes, std::string_view name) {
   // exporters write faces before the vertices they use.
   std::int64_t max_index = 0;
   std::size_t max_index_line = 0;
+  // Per face its material's group; kNone before the first usemtl.
+  constexpr std::uint32_t kNone = UINT32_MAX;
+  std::uint32_t material = kNone;
+  std::vector<std::uint32_t> groups;
   constexpr auto kMaxVertices = static_cast<std::size_t>(std::numeric_limits<std::uint32_t>::max());
 
   while (!s.at_end()) {
@@ -88,6 +93,13 @@ Mesh read_obj(std::string_view bytes, std::string_view name) {
       if (face.size() < 3) s.fail("face has " + std::to_string(face.size()) + " vertices (at least 3 needed)");
       if (mesh.indices.size() + face.size() > kMaxVertices) s.fail("too many face indices (at most 2^32-1 supported)");
       mesh.add_face(face);
+      groups.push_back(material);
+    } else if (kw == "usemtl") {
+      const std::string_view name = s.token();
+      if (name.empty()) s.fail("usemtl without a material name");
+      const auto known = std::find(mesh.group_names.begin(), mesh.group_names.end(), name);
+      material = static_cast<std::uint32_t>(known - mesh.group_names.begin());
+      if (known == mesh.group_names.end()) mesh.group_names.emplace_back(name);
     } else if (!is_ignored_statement(kw)) {
       s.fail("unknown OBJ statement " + io_detail::quote(kw));
     }
@@ -97,6 +109,15 @@ Mesh read_obj(std::string_view bytes, std::string_view name) {
     io_detail::fail_at_line(name, max_index_line,
                             "face index " + std::to_string(max_index) + " out of range (file has " +
                                 std::to_string(mesh.vertices.size()) + " vertices)");
+  if (!mesh.group_names.empty()) {
+    // Faces before the first usemtl form one more group, without a name.
+    const auto unnamed = static_cast<std::uint32_t>(mesh.group_names.size());
+    bool any_unnamed = false;
+    for (std::uint32_t& g : groups)
+      if (g == kNone) g = unnamed, any_unnamed = true;
+    if (any_unnamed) mesh.group_names.emplace_back();
+    mesh.face_groups = std::move(groups);
+  }
   return mesh;
 }
 
@@ -110,6 +131,16 @@ std::string write_obj(const Mesh& mesh) {
     io_detail::append_xyz_line(out, v);
   }
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    // A face group becomes a material: its name, or "group_G" for an unnamed one.
+    if (!mesh.face_groups.empty() && (f == 0 || mesh.face_groups[f] != mesh.face_groups[f - 1])) {
+      const std::uint32_t g = mesh.face_groups[f];
+      out += "usemtl ";
+      if (g < mesh.group_names.size() && !mesh.group_names[g].empty())
+        out += mesh.group_names[g];
+      else
+        out += "group_" + std::to_string(g);
+      out += '\n';
+    }
     out += 'f';
     for (std::uint32_t i : mesh.face(f)) {
       out += ' ';

@@ -65,6 +65,13 @@ inline void check_mesh_for_writing(const Mesh& mesh, std::string_view format) {
       fail("index " + std::to_string(mesh.indices[i]) + " at position " + std::to_string(i) +
            " is out of range (mesh has " + std::to_string(mesh.vertices.size()) + " vertices)");
   }
+  if (!mesh.face_groups.empty() && mesh.face_groups.size() != mesh.face_count())
+    fail("face_groups has " + std::to_string(mesh.face_groups.size()) + " entries for " +
+         std::to_string(mesh.face_count()) + " faces; give one per face or none");
+  // A group name is written as one word (OBJ usemtl).
+  for (const std::string& name : mesh.group_names)
+    if (name.find_first_of(" \t\r\n\f\v#") != std::string::npos)
+      fail("group name '" + name + "' holds white space or '#'; group names are written as one word");
 }
 
 }  // namespace ember::io_detail

@@ -34,6 +34,9 @@ inline const char* mesh_defect(const Mesh& m) {
     if (i >= m.vertices.size()) return "an index is out of range";
   for (const Vec3d& v : m.vertices)
     if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) return "a coordinate is not finite";
+  if (!m.face_groups.empty() && m.face_groups.size() != m.face_count()) return "face_groups is not one per face";
+  for (const std::uint32_t g : m.face_groups)
+    if (!m.group_names.empty() && g >= m.group_names.size()) return "a face group has no entry in group_names";
   return nullptr;
 }
 

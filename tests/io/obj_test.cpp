@@ -112,5 +112,24 @@ TEST(Obj, ExtremeFaceIndicesAreErrorsWithTheValueAndLine) {
   EXPECT_ERROR_HAS(read_obj(v + "f 1 2 -4\n", "neg.obj"), "neg.obj:4:", "-4", "out of range");
 }
 
+TEST(Obj, UsemtlGivesNamedFaceGroupsThatWriteBack) {
+  const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+  // Faces before the first usemtl form an unnamed group after the named ones.
+  const Mesh m = read_obj(v + "f 1 3 2\nusemtl red\nf 1 2 4\nusemtl blue\nf 2 3 4\nusemtl red\nf 1 4 3\n", "g.obj");
+  EXPECT_EQ(m.face_groups, (std::vector<std::uint32_t>{2, 0, 1, 0}));
+  EXPECT_EQ(m.group_names, (std::vector<std::string>{"red", "blue", ""}));
+  const std::string text = write_obj(m);
+  EXPECT_NE(text.find("usemtl group_2\nf 1 3 2\nusemtl red\n"), std::string::npos) << text;
+  const Mesh back = read_obj(text, "back.obj");
+  EXPECT_EQ(back.face_groups, (std::vector<std::uint32_t>{0, 1, 2, 1}));
+  EXPECT_EQ(back.group_names, (std::vector<std::string>{"group_2", "red", "blue"}));
+  // Without usemtl there are no groups.
+  EXPECT_TRUE(read_obj(v + "f 1 3 2\n", "plain.obj").face_groups.empty());
+  EXPECT_ERROR_HAS(read_obj(v + "usemtl\nf 1 2 3\n", "m.obj"), "m.obj:5:", "usemtl without a material name");
+  Mesh bad = m;
+  bad.group_names[0] = "two words";
+  EXPECT_ERROR_HAS(write_obj(bad), "group name 'two words'");
+}
+
 }  // namespace
 }  // namespace ember

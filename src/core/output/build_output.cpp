@@ -5,7 +5,8 @@
 
 namespace ember::core {
 
-BuiltOutput build_output(RouteResult&& route, PreparedInput& input, BooleanOptions::Output form) {
+BuiltOutput build_output(RouteResult&& route, PreparedInput& input, BooleanOptions::Output form,
+                         std::span<const std::uint32_t> source_groups) {
   BuiltOutput out;
   const InputTriangles& in = input.triangles;
   if (form == BooleanOptions::Output::Polygons) {
@@ -21,7 +22,7 @@ BuiltOutput build_output(RouteResult&& route, PreparedInput& input, BooleanOptio
       topology->by_triangle = in.grid.vertex_ids;
       topology->manifold_edges = in.grid.manifold_edges;
     }
-    m = build_triangle_mesh(route.polys, input.quantizer, in.sources, topology);
+    m = build_triangle_mesh(route.polys, input.quantizer, in.sources, topology, source_groups);
   }
   out.mesh = std::move(m.mesh);
   out.provenance = std::move(m.provenance);

@@ -21,6 +21,9 @@ struct BuiltOutput {
 
 /// Run it inside the Boolean's task arena. `input`'s topology must carry
 /// the proof's solid flags.
-BuiltOutput build_output(RouteResult&& route, PreparedInput& input, BooleanOptions::Output form);
+/// `source_groups` (optional): the face group of each source id (triangle
+/// output keeps coplanar faces of different groups apart).
+BuiltOutput build_output(RouteResult&& route, PreparedInput& input, BooleanOptions::Output form,
+                         std::span<const std::uint32_t> source_groups = {});
 
 }  // namespace ember::core

@@ -196,7 +196,8 @@ void assemble(const RegionTriangles& direct, const Regions& regions,
 }  // namespace
 
 MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quantizer& q,
-                               std::span<const Provenance> sources, const InputTopology* ids) {
+                               std::span<const Provenance> sources, const InputTopology* ids,
+                               std::span<const std::uint32_t> source_groups) {
   MeshOutput out;
   auto clock = std::chrono::steady_clock::now();
   const OutputVertices verts = exact_weld(polys, q, ids);
@@ -215,7 +216,7 @@ MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quant
   RegionTriangles direct;
   std::vector<char> pinned(verts.exact.size(), 0);
   collect_direct(polys, cycles, through, direct, pinned);
-  Regions regions = build_regions(polys, cycles, verts, through);
+  Regions regions = build_regions(polys, cycles, verts, through, source_groups);
   const std::vector<Removal> removals = remove_collinear_vertices(regions, verts.exact.size(), pinned);
   out.stats.regions_ms = ms_since(clock);
   out.stats.regions = regions.regions.size();

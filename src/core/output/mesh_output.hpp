@@ -64,8 +64,10 @@ struct MeshOutput {
 };
 
 /// Steps 1-4. `sources[id]` is the provenance of source polygon id; `ids`
-/// (optional) speeds up step 1.
+/// (optional) speeds up step 1; `source_groups` (optional, per source id)
+/// keeps coplanar pieces of different face groups in different regions.
 MeshOutput build_triangle_mesh(std::span<const OutputPolygon> polys, const Quantizer& q,
-                               std::span<const Provenance> sources, const InputTopology* ids = nullptr);
+                               std::span<const Provenance> sources, const InputTopology* ids = nullptr,
+                               std::span<const std::uint32_t> source_groups = {});
 
 }  // namespace ember::core

@@ -249,7 +249,8 @@ void piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids, s
 }
 
 Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles, const OutputVertices& verts,
-                      const std::vector<char>& skip) {
+                      const std::vector<char>& skip, std::span<const std::uint32_t> source_groups) {
+  const auto face_group = [&](std::uint32_t p) { return source_groups.empty() ? 0u : source_groups[polys[p].id]; };
   // Only kept polygons' keys are written and read. (Value-initialized, the
   // 48-byte keys of a large output would take their page faults in one
   // serial pass.)
@@ -263,11 +264,13 @@ Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles
     if (!skip[p]) order.push_back(p);
   const auto kept = static_cast<std::uint32_t>(order.size());
   tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
-    return keys[x] < keys[y] || (keys[x] == keys[y] && x < y);
+    if (!(keys[x] == keys[y])) return keys[x] < keys[y];
+    return face_group(x) != face_group(y) ? face_group(x) < face_group(y) : x < y;
   });
   std::vector<std::size_t> group_begin;
   for (std::size_t i = 0; i < order.size(); ++i)
-    if (i == 0 || !(keys[order[i]] == keys[order[i - 1]])) group_begin.push_back(i);
+    if (i == 0 || !(keys[order[i]] == keys[order[i - 1]]) || face_group(order[i]) != face_group(order[i - 1]))
+      group_begin.push_back(i);
   group_begin.push_back(order.size());
   const std::size_t groups = group_begin.size() - 1;
 

@@ -44,9 +44,11 @@ struct Regions {
 void piece_loop(const OutputPolygon& poly, std::span<const std::uint32_t> ids, std::vector<std::uint32_t>& loop);
 
 /// Step 3 (merge). `cycles` are the polygons after step 2, unflipped.
-/// Polygons flagged in `skip` (step 2b's) are left out.
+/// Polygons flagged in `skip` (step 2b's) are left out. With `source_groups`
+/// (the face group of each source id, core/input/face_groups.hpp), pieces of
+/// different groups never share a region.
 Regions build_regions(std::span<const OutputPolygon> polys, const Cycles& cycles, const OutputVertices& verts,
-                      const std::vector<char>& skip);
+                      const std::vector<char>& skip, std::span<const std::uint32_t> source_groups = {});
 
 /// Orientation of a, b, c seen from the positive side of `plane` (+1 counter-clockwise).
 int orient_in_plane(const Point& a, const Point& b, const Point& c, const Plane& plane);
