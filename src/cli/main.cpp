@@ -7,7 +7,7 @@
 //   ember demo [-o DIR] [--threads N]
 //   ember --version
 //
-// Formats follow the file extension (.obj .stl .ply .off .3mf). Errors print one
+// Formats follow the file extension (.obj .stl .ply .off .3mf .gltf .glb). Errors print one
 // line on stderr and exit with 1 (2 for usage errors); no partial output file
 // is ever left behind (results are written to a temporary name and renamed).
 #include <CLI/CLI.hpp>
@@ -222,10 +222,13 @@ int compute_and_write(const ember::cli::Operands& operands, const std::vector<st
       for (std::size_t i = shared; i < results[k].warnings.size(); ++i)
         std::fprintf(stderr, "ember: warning: %s%s\n", layer.c_str(),
                      name_operand(results[k].warnings[i], operands.names).c_str());
-      if (ember::format_from_path(outputs[k]) == ember::MeshFormat::Stl)
+      const ember::MeshFormat format = ember::format_from_path(outputs[k]);
+      const bool float32 =
+          format == ember::MeshFormat::Stl || format == ember::MeshFormat::Gltf || format == ember::MeshFormat::Glb;
+      if (float32)
         if (const std::size_t bad = ember::stl_degenerate_triangles(results[k].mesh))
           std::fprintf(stderr,
-                       "ember: warning: %s: %zu triangles become degenerate in STL's float32 coordinates; "
+                       "ember: warning: %s: %zu triangles become degenerate in the format's float32 coordinates; "
                        "use .ply, .obj or .off to keep the double coordinates\n",
                        outputs[k].c_str(), bad);
     }
@@ -321,7 +324,7 @@ void add_boolean_options(CLI::App* sub, BooleanArgs& args) {
 
 int main(int argc, char** argv) {
   ember::cap_malloc_arenas();  // before any thread starts (ember/process.hpp)
-  CLI::App app{"ember: exact mesh Booleans (EMBER). Formats by extension: .obj .stl .ply .off .3mf"};
+  CLI::App app{"ember: exact mesh Booleans (EMBER). Formats by extension: .obj .stl .ply .off .3mf .gltf .glb"};
   app.require_subcommand(1);
   BooleanArgs args;
   struct Command {

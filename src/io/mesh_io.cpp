@@ -10,6 +10,7 @@
 
 #include "ember/error.hpp"
 #include "ember/io/mesh_io.hpp"
+#include "io/gltf.hpp"
 
 namespace ember {
 namespace {
@@ -67,8 +68,10 @@ MeshFormat format_from_path(const std::filesystem::path& path) {
   if (ext == ".off") return MeshFormat::Off;
   if (ext == ".ply") return MeshFormat::Ply;
   if (ext == ".3mf") return MeshFormat::ThreeMf;
+  if (ext == ".gltf") return MeshFormat::Gltf;
+  if (ext == ".glb") return MeshFormat::Glb;
   throw Error(path.string() + ": unknown mesh file extension '" + path.extension().string() +
-              "' (supported: .obj, .stl, .off, .ply, .3mf)");
+              "' (supported: .obj, .stl, .off, .ply, .3mf, .gltf, .glb)");
 }
 
 Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name, std::vector<std::string>* warnings) {
@@ -78,6 +81,8 @@ Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name,
     case MeshFormat::Off: return read_off(bytes, name);
     case MeshFormat::Ply: return read_ply(bytes, name);
     case MeshFormat::ThreeMf: return single_3mf_object(read_3mf(bytes, name), name);
+    case MeshFormat::Gltf: return read_gltf(bytes, name, false);
+    case MeshFormat::Glb: return read_gltf(bytes, name, true);
   }
   throw Error(std::string(name) + ": invalid mesh format value");
 }
@@ -87,6 +92,9 @@ Mesh read_mesh(const std::filesystem::path& path) { return read_mesh(path, nullp
 Mesh read_mesh(const std::filesystem::path& path, std::vector<std::string>* warnings) {
   const MeshFormat format = format_from_path(path);
   const std::string data = read_file(path);
+  if (format == MeshFormat::Gltf || format == MeshFormat::Glb)  // external buffers beside the file
+    return io_detail::read_gltf(data, path.string(), format == MeshFormat::Glb,
+                                std::filesystem::absolute(path).parent_path(), ReadOptions{}.max_3mf_triangles);
   return read_mesh(data, format, path.string(), warnings);
 }
 
@@ -97,6 +105,11 @@ std::vector<Mesh> read_meshes(const std::filesystem::path& path, const ReadOptio
   const std::string data = read_file(path);
   if (format == MeshFormat::ThreeMf) return read_3mf(data, path.string(), options);
   std::vector<Mesh> meshes;
+  if (format == MeshFormat::Gltf || format == MeshFormat::Glb) {
+    meshes.push_back(io_detail::read_gltf(data, path.string(), format == MeshFormat::Glb,
+                                          std::filesystem::absolute(path).parent_path(), options.max_3mf_triangles));
+    return meshes;
+  }
   meshes.push_back(read_mesh(data, format, path.string()));
   return meshes;
 }
@@ -108,6 +121,8 @@ std::string write_mesh(const Mesh& mesh, MeshFormat format, std::span<const Prov
     case MeshFormat::Off: return write_off(mesh);
     case MeshFormat::Ply: return write_ply(mesh, provenance);
     case MeshFormat::ThreeMf: return write_3mf(mesh);
+    case MeshFormat::Gltf: return write_gltf(mesh, false);
+    case MeshFormat::Glb: return write_gltf(mesh, true);
   }
   throw Error("invalid mesh format value");
 }

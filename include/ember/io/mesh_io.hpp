@@ -1,5 +1,5 @@
 #pragma once
-// Reading and writing meshes in OBJ, STL (binary and ASCII), OFF, PLY and 3MF.
+// Reading and writing meshes in OBJ, STL (binary and ASCII), OFF, PLY, 3MF and glTF 2.0 (.gltf, .glb).
 //
 // Readers take the whole file as bytes; `name` only appears in error messages.
 // Text headers may start with a UTF-8 byte-order mark.
@@ -17,7 +17,7 @@
 
 namespace ember {
 
-enum class MeshFormat { Obj, Stl, Off, Ply, ThreeMf };
+enum class MeshFormat { Obj, Stl, Off, Ply, ThreeMf, Gltf, Glb };
 
 /// Limits a reader applies before it builds a mesh, so that a small file
 /// cannot ask for unbounded memory or time.
@@ -77,6 +77,15 @@ std::vector<Mesh> read_3mf(std::string_view bytes, std::string_view name);
 /// As above; a file that expands beyond `options`' limits is an ember::Error
 /// that names the limits and how to raise them.
 std::vector<Mesh> read_3mf(std::string_view bytes, std::string_view name, const ReadOptions& options);
+/// glTF 2.0 through tinygltf, JSON (.gltf) or binary (.glb): the triangles
+/// (triangle lists, strips and fans) of every mesh node of the default scene
+/// with the node transforms applied, as one mesh; each primitive's material
+/// becomes its faces' group, named by the material (Mesh::face_groups).
+/// Points and lines are skipped; sparse accessors, non-float positions and
+/// accessors that reach past their buffers are errors. Textures are not
+/// decoded. From memory, external buffer files cannot be read (read the file
+/// by path); by path they are read from the file's folder.
+Mesh read_gltf(std::string_view bytes, std::string_view name, bool binary);
 /// Reads in-memory bytes in the given format (3MF: exactly one object; warnings: as for read_stl).
 Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name,
                std::vector<std::string>* warnings = nullptr);
@@ -106,6 +115,11 @@ std::string write_3mf(const Mesh& mesh);
 /// 3MF with one object and build item per mesh (read back by read_3mf as
 /// separate meshes, by the CLI as separate operands).
 std::string write_3mf(std::span<const Mesh> meshes);
+/// glTF 2.0, JSON with the buffer embedded (binary false) or GLB: one node,
+/// one primitive per face group (a material named after the group), faces
+/// fan-triangulated, positions as float32 (glTF has no doubles: use OBJ, OFF
+/// or PLY for bit-exact results).
+std::string write_gltf(const Mesh& mesh, bool binary);
 std::string write_mesh(const Mesh& mesh, MeshFormat format, std::span<const Provenance> provenance = {});
 
 }  // namespace ember
