@@ -23,6 +23,16 @@ struct Vec3d {
   friend bool operator==(const Vec3d&, const Vec3d&) = default;
 };
 
+/// A float property of a mesh's corners or vertices: texture coordinates,
+/// normals, colours or any other channels (docs/cpp-api.md, "Properties").
+struct MeshProperty {
+  std::string name;         ///< "uv" (width 2), "normal" (3), "color" (3 or 4) by convention, or any
+  std::uint32_t width = 0;  ///< floats per element
+  bool per_corner = true;   ///< per corner (one element per entry of indices), else per vertex
+  std::vector<float> values;
+  friend bool operator==(const MeshProperty&, const MeshProperty&) = default;
+};
+
 struct Mesh {
   std::vector<Vec3d> vertices;
   /// Concatenated vertex indices of all faces.
@@ -36,6 +46,10 @@ struct Mesh {
   /// Optional names of the groups: group g is called group_names[g] where
   /// that exists and is not empty.
   std::vector<std::string> group_names;
+  /// Optional properties. A Boolean gives every output corner each property
+  /// any operand has, per corner: kept where the corner is an input vertex,
+  /// interpolated linearly in the input face it lies on elsewhere.
+  std::vector<MeshProperty> properties;
 
   std::size_t face_count() const { return face_offsets.size() - 1; }
   std::size_t face_size(std::size_t f) const { return face_offsets[f + 1] - face_offsets[f]; }

@@ -25,6 +25,7 @@
 #include "core/input/face_groups.hpp"
 #include "core/input/prepare.hpp"
 #include "core/output/build_output.hpp"
+#include "core/output/properties.hpp"
 #include "core/proof/prove.hpp"
 #include "core/route/route.hpp"
 #include "core/route/solve_setup.hpp"
@@ -180,6 +181,16 @@ std::vector<std::uint32_t> groups_by_source(const core::FaceGroups& groups, std:
   return out;
 }
 
+/// A key per source id that differs between input faces (operand, face).
+std::vector<std::uint32_t> faces_by_source(std::span<const Mesh> operands, std::span<const Provenance> sources) {
+  std::vector<std::uint32_t> base(operands.size() + 1, 0);
+  for (std::size_t o = 0; o < operands.size(); ++o)
+    base[o + 1] = base[o] + static_cast<std::uint32_t>(operands[o].face_count());
+  std::vector<std::uint32_t> out(sources.size());
+  for (std::size_t id = 0; id < sources.size(); ++id) out[id] = base[sources[id].operand] + sources[id].face;
+  return out;
+}
+
 /// Each output face in its source face's group; the names, if any group has one.
 void assign_groups(const core::FaceGroups& groups, BooleanResult& r) {
   if (groups.empty()) return;
@@ -223,6 +234,7 @@ std::vector<BooleanResult> run_boolean(std::span<const Mesh> operands, const cor
   else if (!options.indicator)
     indicator_for(rule.op, operands.size(), options.min_k);  // checks min_k
   const core::FaceGroups groups = core::FaceGroups::of(operands);
+  const core::PropertyPlan properties = core::PropertyPlan::of(operands);
   BooleanResult result;
   const int threads = thread_count(options);
   result.stats.threads = threads;
@@ -231,7 +243,9 @@ std::vector<BooleanResult> run_boolean(std::span<const Mesh> operands, const cor
   core::PreparedInput in;
   arena.execute([&] { in = core::prepare_input(operands, options.allow_open); });
   record_input(in, result);
-  const std::vector<std::uint32_t> source_groups = groups_by_source(groups, in.triangles.sources);
+  // With properties no region spans two input faces (each interpolates its own).
+  const std::vector<std::uint32_t> source_groups = properties.empty() ? groups_by_source(groups, in.triangles.sources)
+                                                                      : faces_by_source(operands, in.triangles.sources);
   const auto setup_done = Clock::now();
   PhaseTimes times;
   times.setup_ms = ms_between(start, setup_done);
@@ -255,6 +269,10 @@ std::vector<BooleanResult> run_boolean(std::span<const Mesh> operands, const cor
     results.push_back(k < count ? result : std::move(result));
     record_output(std::move(out), results.back());
     assign_groups(groups, results.back());
+    if (!properties.empty())
+      for (std::string& w :
+           core::interpolate_properties(properties, operands, results.back().provenance, results.back().mesh))
+        results.back().warnings.push_back(std::move(w));
   }
   const auto end = Clock::now();
   times.output_ms = ms_between(solved, end);

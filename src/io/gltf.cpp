@@ -142,6 +142,8 @@ struct Collector {
   std::uint64_t max_triangles;
   Mesh mesh;
   std::vector<std::uint32_t> groups;
+  std::vector<float> uv, normal;  // per vertex of `mesh`, zeros where a primitive has none
+  bool any_uv = false, any_normal = false;
   bool any_material = false;
   std::uint64_t triangles = 0;
   /// Primitives of one mesh instance that share a POSITION accessor share
@@ -198,6 +200,7 @@ struct Collector {
         fail(name, "position " + std::to_string(i) + " is not finite");
       mesh.vertices.push_back(q);
     }
+    if (added) attributes(p, m, v.count);
     // A mirroring transform turns faces inside out; glTF flips the winding then.
     const double det =
         m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) + m[8] * (m[1] * m[6] - m[5] * m[2]);
@@ -215,6 +218,48 @@ struct Collector {
       for (std::size_t i = 1; i + 1 < n; ++i) add(order[0], order[i], order[i + 1]);
     }
     any_material |= p.material >= 0;
+  }
+
+  /// TEXCOORD_0 and NORMAL of a primitive's `count` new vertices (normals
+  /// through the inverse transpose of the node's transform).
+  void attributes(const tinygltf::Primitive& p, const Matrix& m, std::size_t count) {
+    const auto read = [&](const char* attribute, int width, std::vector<float>& into, bool& any) {
+      const auto it = p.attributes.find(attribute);
+      const std::size_t at = into.size();
+      into.resize(at + count * static_cast<std::size_t>(width), 0.0f);
+      if (it == p.attributes.end()) return;
+      const AccessorView a = view_of(model, it->second, width, name, attribute);
+      if (a.component != TINYGLTF_COMPONENT_TYPE_FLOAT) fail(name, std::string(attribute) + " must be float");
+      if (a.count != count) fail(name, std::string(attribute) + " has a different count than POSITION");
+      for (std::size_t i = 0; i < count; ++i) {
+        std::memcpy(into.data() + at + i * static_cast<std::size_t>(width), a.data + i * a.stride,
+                    4 * static_cast<std::size_t>(width));
+        for (int c = 0; c < width; ++c)
+          if (!std::isfinite(into[at + i * static_cast<std::size_t>(width) + static_cast<std::size_t>(c)]))
+            fail(name, std::string(attribute) + " value " + std::to_string(i) + " is not finite");
+      }
+      any = true;
+    };
+    const std::size_t first_normal = normal.size();
+    read("TEXCOORD_0", 2, uv, any_uv);
+    read("NORMAL", 3, normal, any_normal);
+    // n' = C n with C the cofactor matrix of the linear part A (A^-T = C / det A).
+    const auto a = [&](int r, int col) { return m[static_cast<std::size_t>(col * 4 + r)]; };
+    const double C[3][3] = {{a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1), a(1, 2) * a(2, 0) - a(1, 0) * a(2, 2),
+                             a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0)},
+                            {a(0, 2) * a(2, 1) - a(0, 1) * a(2, 2), a(0, 0) * a(2, 2) - a(0, 2) * a(2, 0),
+                             a(0, 1) * a(2, 0) - a(0, 0) * a(2, 1)},
+                            {a(0, 1) * a(1, 2) - a(0, 2) * a(1, 1), a(0, 2) * a(1, 0) - a(0, 0) * a(1, 2),
+                             a(0, 0) * a(1, 1) - a(0, 1) * a(1, 0)}};
+    const double det = a(0, 0) * C[0][0] + a(0, 1) * C[0][1] + a(0, 2) * C[0][2];
+    for (std::size_t i = first_normal; i + 2 < normal.size(); i += 3) {
+      const double n[3] = {normal[i], normal[i + 1], normal[i + 2]};
+      double t[3];
+      for (int r = 0; r < 3; ++r) t[r] = C[r][0] * n[0] + C[r][1] * n[1] + C[r][2] * n[2];
+      const double len = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+      const double sign = len > 0 ? (det < 0 ? -1.0 : 1.0) / len : 0.0;
+      for (int k = 0; k < 3; ++k) normal[i + static_cast<std::size_t>(k)] = static_cast<float>(t[k] * sign);
+    }
   }
 
   void node(int index, const Matrix& parent, int depth) {
@@ -294,7 +339,7 @@ Mesh read_gltf(std::string_view bytes, std::string_view name, bool binary, const
     fail(name,
          std::string("not a valid ") + (binary ? "GLB" : "glTF") + " file: " + (err.empty() ? "parse error" : err));
   }
-  Collector c{model, name, max_triangles, {}, {}, false, 0};
+  Collector c{model, name, max_triangles};
   const Matrix identity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   if (!model.scenes.empty()) {
     const int s = model.defaultScene >= 0 ? model.defaultScene : 0;
@@ -305,6 +350,8 @@ Mesh read_gltf(std::string_view bytes, std::string_view name, bool binary, const
     for (const tinygltf::Mesh& m : model.meshes)
       for (const tinygltf::Primitive& p : m.primitives) c.primitive(p, identity);
   }
+  if (c.any_uv) c.mesh.properties.push_back({"uv", 2, false, std::move(c.uv)});
+  if (c.any_normal) c.mesh.properties.push_back({"normal", 3, false, std::move(c.normal)});
   if (c.any_material) {
     c.mesh.group_names.resize(model.materials.size());
     for (std::size_t i = 0; i < model.materials.size(); ++i) c.mesh.group_names[i] = model.materials[i].name;
@@ -326,13 +373,48 @@ Mesh read_gltf(std::string_view bytes, std::string_view name, bool binary) {
 
 std::string write_gltf(const Mesh& mesh, bool binary) {
   io_detail::check_mesh_for_writing(mesh, binary ? "GLB" : "glTF");
+  // glTF attributes are per vertex: with "uv" or "normal" properties each
+  // distinct (vertex, uv, normal) of a corner is one glTF vertex (seams split).
+  const MeshProperty *uv = nullptr, *normal = nullptr;
+  for (const MeshProperty& p : mesh.properties) {
+    if (p.name == "uv" && p.width == 2) uv = &p;
+    if (p.name == "normal" && p.width == 3) normal = &p;
+  }
+  std::vector<std::uint32_t> vertex_of(mesh.indices.size());
+  std::vector<Vec3d> gltf_vertices;
+  std::vector<float> uvs, normals;
+  if (!uv && !normal) {
+    vertex_of = mesh.indices;
+    gltf_vertices = mesh.vertices;
+  } else {
+    std::map<std::pair<std::uint32_t, std::array<float, 5>>, std::uint32_t> index;
+    for (std::size_t c = 0; c < mesh.indices.size(); ++c) {
+      const std::uint32_t v = mesh.indices[c];
+      std::array<float, 5> key{};
+      const auto take = [&](const MeshProperty* p, std::size_t at) {
+        if (!p) return;
+        const std::size_t e = p->per_corner ? c : v;
+        for (std::uint32_t k = 0; k < p->width; ++k) key[at + k] = p->values[e * p->width + k];
+      };
+      take(uv, 0);
+      take(normal, 2);
+      const auto [it, added] = index.emplace(std::pair{v, key}, static_cast<std::uint32_t>(gltf_vertices.size()));
+      if (added) {
+        gltf_vertices.push_back(mesh.vertices[v]);
+        if (uv) uvs.insert(uvs.end(), key.begin(), key.begin() + 2);
+        if (normal) normals.insert(normals.end(), key.begin() + 2, key.end());
+      }
+      vertex_of[c] = it->second;
+    }
+  }
   // Faces fan-triangulated, grouped by face group in group order (one
-  // primitive per group), all sharing one POSITION accessor.
+  // primitive per group), all sharing one set of vertex accessors.
   std::map<std::uint32_t, std::vector<std::uint32_t>> by_group;
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
-    const auto face = mesh.face(f);
+    const std::uint32_t c0 = mesh.face_offsets[f];
     std::vector<std::uint32_t>& tris = by_group[mesh.face_groups.empty() ? 0 : mesh.face_groups[f]];
-    for (std::size_t i = 1; i + 1 < face.size(); ++i) tris.insert(tris.end(), {face[0], face[i], face[i + 1]});
+    for (std::size_t i = 1; i + 1 < mesh.face_size(f); ++i)
+      tris.insert(tris.end(), {vertex_of[c0], vertex_of[c0 + i], vertex_of[c0 + i + 1]});
   }
   tinygltf::Model model;
   model.asset.version = "2.0";
@@ -344,8 +426,8 @@ std::string write_gltf(const Mesh& mesh, bool binary) {
     bytes.insert(bytes.end(), b, b + n);
   };
   std::vector<double> lo(3, 0.0), hi(3, 0.0);
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
-    const Vec3d& p = mesh.vertices[i];
+  for (std::size_t i = 0; i < gltf_vertices.size(); ++i) {
+    const Vec3d& p = gltf_vertices[i];
     const float xyz[3] = {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)};
     append(xyz, sizeof xyz);
     for (int a = 0; a < 3; ++a) {
@@ -361,10 +443,29 @@ std::string write_gltf(const Mesh& mesh, bool binary) {
   positions.bufferView = 0;
   positions.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   positions.type = TINYGLTF_TYPE_VEC3;
-  positions.count = mesh.vertices.size();
+  positions.count = gltf_vertices.size();
   positions.minValues = lo;
   positions.maxValues = hi;
   model.accessors.push_back(positions);
+  // TEXCOORD_0 and NORMAL, one buffer view each, accessors 1 and 2 when present.
+  std::map<std::string, int> attributes{{"POSITION", 0}};
+  for (const auto& [name, values, width] : {std::tuple{"TEXCOORD_0", &uvs, 2}, std::tuple{"NORMAL", &normals, 3}}) {
+    if (values->empty()) continue;
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = bytes.size();
+    append(values->data(), values->size() * 4);
+    view.byteLength = values->size() * 4;
+    view.target = TINYGLTF_TARGET_ARRAY_BUFFER;
+    model.bufferViews.push_back(view);
+    tinygltf::Accessor a;
+    a.bufferView = static_cast<int>(model.bufferViews.size() - 1);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    a.type = width == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3;
+    a.count = values->size() / static_cast<std::size_t>(width);
+    model.accessors.push_back(a);
+    attributes[name] = static_cast<int>(model.accessors.size() - 1);
+  }
   tinygltf::Mesh out;
   for (const auto& [group, tris] : by_group) {
     tinygltf::BufferView view;
@@ -381,7 +482,7 @@ std::string write_gltf(const Mesh& mesh, bool binary) {
     indices.count = tris.size();
     model.accessors.push_back(indices);
     tinygltf::Primitive p;
-    p.attributes["POSITION"] = 0;
+    p.attributes = attributes;
     p.indices = static_cast<int>(model.accessors.size() - 1);
     p.mode = TINYGLTF_MODE_TRIANGLES;
     if (!mesh.face_groups.empty()) {

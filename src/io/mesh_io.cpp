@@ -76,7 +76,7 @@ MeshFormat format_from_path(const std::filesystem::path& path) {
 
 Mesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name, std::vector<std::string>* warnings) {
   switch (format) {
-    case MeshFormat::Obj: return read_obj(bytes, name);
+    case MeshFormat::Obj: return read_obj(bytes, name, warnings);
     case MeshFormat::Stl: return read_stl(bytes, name, warnings);
     case MeshFormat::Off: return read_off(bytes, name);
     case MeshFormat::Ply: return read_ply(bytes, name);

@@ -118,6 +118,12 @@ class TextScanner {
   void skip_token_rest() {
     while (p_ != end_ && !is_space(*p_)) ++p_;
   }
+  /// The rest of the current token, consumed (empty right after a token ends).
+  std::string_view token_rest() {
+    const char* s = p_;
+    skip_token_rest();
+    return {s, static_cast<std::size_t>(p_ - s)};
+  }
   /// Consumes `s` if the next token starts with it exactly.
   bool accept(std::string_view s) {
     skip_blanks();

@@ -30,6 +30,13 @@ inline void append_xyz_line(std::string& out, const Vec3d& v) {
   out += '\n';
 }
 
+/// The shortest decimal that reads back to the same float (properties are floats).
+inline void append_float(std::string& out, float v) {
+  char buf[32];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
 inline void append_uint(std::string& out, std::uint64_t v) {
   char buf[24];
   auto r = std::to_chars(buf, buf + sizeof buf, v);
@@ -68,6 +75,15 @@ inline void check_mesh_for_writing(const Mesh& mesh, std::string_view format) {
   if (!mesh.face_groups.empty() && mesh.face_groups.size() != mesh.face_count())
     fail("face_groups has " + std::to_string(mesh.face_groups.size()) + " entries for " +
          std::to_string(mesh.face_count()) + " faces; give one per face or none");
+  for (const MeshProperty& p : mesh.properties) {
+    const std::size_t elements = p.per_corner ? mesh.indices.size() : mesh.vertices.size();
+    if (p.width == 0 || p.values.size() != elements * p.width)
+      fail("property '" + p.name + "' has " + std::to_string(p.values.size()) + " values for " +
+           std::to_string(elements) + (p.per_corner ? " corners" : " vertices") + " of width " +
+           std::to_string(p.width));
+    for (const float v : p.values)
+      if (!std::isfinite(v)) fail("property '" + p.name + "' has a non-finite value");
+  }
   // A group name is written as one word (OBJ usemtl).
   for (const std::string& name : mesh.group_names)
     if (name.find_first_of(" \t\r\n\f\v#") != std::string::npos)

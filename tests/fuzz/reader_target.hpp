@@ -35,6 +35,9 @@ inline const char* mesh_defect(const Mesh& m) {
   for (const Vec3d& v : m.vertices)
     if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) return "a coordinate is not finite";
   if (!m.face_groups.empty() && m.face_groups.size() != m.face_count()) return "face_groups is not one per face";
+  for (const MeshProperty& p : m.properties)
+    if (p.width == 0 || p.values.size() != p.width * (p.per_corner ? m.indices.size() : m.vertices.size()))
+      return "a property's size does not match the mesh";
   for (const std::uint32_t g : m.face_groups)
     if (!m.group_names.empty() && g >= m.group_names.size()) return "a face group has no entry in group_names";
   return nullptr;

@@ -2,6 +2,7 @@
 // and fans, and malformed files refused with the file's name.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -106,6 +107,50 @@ TEST(Gltf, MalformedFilesAreRefusedWithTheirName) {
                    "material 0 does not exist");
   const std::string external = R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 4, "uri": "side.bin"}]})";
   EXPECT_ERROR_HAS(read_gltf(external, "ext.gltf", false), "ext.gltf");
+}
+
+TEST(Gltf, UvsAndNormalsRoundTripWithSeamsSplitIntoVertices) {
+  Mesh m = test::box({0, 0, 0}, {1, 1, 1});
+  MeshProperty uv{"uv", 2, true, {}}, normal{"normal", 3, true, {}};
+  for (std::size_t f = 0; f < m.face_count(); ++f)
+    for (std::size_t k = 0; k < 3; ++k) {
+      uv.values.insert(uv.values.end(), {float(f) / 12.0f, float(k) / 3.0f});  // a seam at every edge
+      normal.values.insert(normal.values.end(), {0.0f, 0.0f, 1.0f});
+    }
+  m.properties = {uv, normal};
+  for (const bool binary : {false, true}) {
+    const Mesh back = read_gltf(write_gltf(m, binary), "uv", binary);
+    ASSERT_EQ(back.face_count(), m.face_count());
+    ASSERT_EQ(back.properties.size(), 2u);
+    const MeshProperty& buv = back.properties[0];
+    EXPECT_EQ(buv.name, "uv");
+    EXPECT_FALSE(buv.per_corner);  // glTF attributes are per vertex
+    for (std::size_t c = 0; c < back.indices.size(); ++c) {
+      EXPECT_EQ(buv.values[2 * back.indices[c]], uv.values[2 * c]);
+      EXPECT_EQ(buv.values[2 * back.indices[c] + 1], uv.values[2 * c + 1]);
+      EXPECT_EQ(back.vertices[back.indices[c]], m.vertices[m.indices[c]]);
+    }
+    EXPECT_EQ(back.properties[1].name, "normal");
+  }
+}
+
+TEST(Gltf, NormalsFollowTheNodeTransformsInverseTranspose) {
+  // A node scaling x by 2 turns the normal (1, 1, 0)/sqrt 2 into (1/2, 1, 0) normalized.
+  Mesh m = test::box({0, 0, 0}, {1, 1, 1});
+  m.properties = {{"normal", 3, false, std::vector<float>(3 * m.vertices.size(), 0.0f)}};
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    m.properties[0].values[3 * v] = float(1 / std::sqrt(2.0));
+    m.properties[0].values[3 * v + 1] = float(1 / std::sqrt(2.0));
+  }
+  std::string text = write_gltf(m, false);
+  const std::string node = "\"mesh\": 0";
+  text.replace(text.find(node), node.size(), "\"mesh\": 0, \"scale\": [2, 1, 1]");
+  const Mesh back = read_gltf(text, "scaled", false);
+  const std::vector<float>& n = back.properties[0].values;
+  EXPECT_NEAR(n[0], 0.5 / std::sqrt(1.25), 1e-6);
+  EXPECT_NEAR(n[1], 1.0 / std::sqrt(1.25), 1e-6);
+  for (std::size_t c = 0; c < back.indices.size(); ++c)
+    EXPECT_EQ(back.vertices[back.indices[c]].x, 2.0 * m.vertices[m.indices[c]].x);
 }
 
 }  // namespace

@@ -131,5 +131,32 @@ TEST(Obj, UsemtlGivesNamedFaceGroupsThatWriteBack) {
   EXPECT_ERROR_HAS(write_obj(bad), "group name 'two words'");
 }
 
+TEST(Obj, TextureAndNormalIndicesGivePerCornerPropertiesThatWriteBack) {
+  const std::string text =
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 0.5 1\nvn 0 0 -1\n"
+      "f 1/1/1 3/3/1 2/2/1\nf 1/1 2/2 4/3\nf 2//1 3//1 4//1\nf 1 4 3\n";
+  const Mesh m = read_obj(text, "t.obj");
+  ASSERT_EQ(m.properties.size(), 2u);
+  const MeshProperty& uv = m.properties[0];
+  EXPECT_EQ(uv.name, "uv");
+  EXPECT_TRUE(uv.per_corner);
+  EXPECT_EQ(uv.values,
+            (std::vector<float>{0, 0, 0.5, 1, 1, 0, 0, 0, 1, 0, 0.5, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(m.properties[1].name, "normal");
+  EXPECT_EQ(m.properties[1].values.size(), 36u);
+  EXPECT_EQ(m.properties[1].values[2], -1.0f);
+  // Written back as one vt/vn per corner; the same properties read again.
+  EXPECT_EQ(read_obj(write_obj(m), "back.obj").properties, m.properties);
+  EXPECT_TRUE(read_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "plain.obj").properties.empty());
+  // A reference past the vt lines drops the texture coordinates, with a warning.
+  std::vector<std::string> warnings;
+  const Mesh dropped = read_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n", "r.obj", &warnings);
+  EXPECT_TRUE(dropped.properties.empty());
+  EXPECT_EQ(dropped.face_count(), 1u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], "r.obj: texture index 2 out of range (file has 1); texture coordinates dropped");
+  EXPECT_ERROR_HAS(read_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/x 2 3\n", "x.obj"), "x.obj:4:", "malformed face corner");
+}
+
 }  // namespace
 }  // namespace ember

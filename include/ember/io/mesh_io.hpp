@@ -59,8 +59,11 @@ void write_mesh(const Mesh& mesh, const std::filesystem::path& path);
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path, std::span<const Provenance> provenance);
 
 /// OBJ: polygons with (negative) indices in v, v/vt, v//vn, v/vt/vn form;
-/// texture, normal, group, material and other statements are ignored.
-Mesh read_obj(std::string_view bytes, std::string_view name);
+/// `usemtl` gives face groups; other statements are ignored.
+/// `vt`/`vn` referenced by faces become per-corner "uv" and "normal"
+/// properties; a reference past the file's vt/vn lines drops that property
+/// (noted in `warnings` when given).
+Mesh read_obj(std::string_view bytes, std::string_view name, std::vector<std::string>* warnings = nullptr);
 /// STL, binary or ASCII (detected by size and content). STL stores a triangle
 /// soup; identical positions are merged into one vertex (+0.0 == -0.0). An
 /// ASCII file that ends without 'endsolid' is read (other tools write such
