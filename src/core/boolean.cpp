@@ -172,36 +172,6 @@ void check_expression(std::span<const Mesh> operands, const Csg& expression, con
           {.operand = i});
 }
 
-/// The face group of every source id (empty without groups).
-std::vector<std::uint32_t> groups_by_source(const core::FaceGroups& groups, std::span<const Provenance> sources) {
-  std::vector<std::uint32_t> out;
-  if (groups.empty()) return out;
-  out.resize(sources.size());
-  for (std::size_t id = 0; id < sources.size(); ++id) out[id] = groups.group(sources[id].operand, sources[id].face);
-  return out;
-}
-
-/// A key per source id that differs between input faces (operand, face).
-std::vector<std::uint32_t> faces_by_source(std::span<const Mesh> operands, std::span<const Provenance> sources) {
-  std::vector<std::uint32_t> base(operands.size() + 1, 0);
-  for (std::size_t o = 0; o < operands.size(); ++o)
-    base[o + 1] = base[o] + static_cast<std::uint32_t>(operands[o].face_count());
-  std::vector<std::uint32_t> out(sources.size());
-  for (std::size_t id = 0; id < sources.size(); ++id) out[id] = base[sources[id].operand] + sources[id].face;
-  return out;
-}
-
-/// Each output face in its source face's group; the names, if any group has one.
-void assign_groups(const core::FaceGroups& groups, BooleanResult& r) {
-  if (groups.empty()) return;
-  r.mesh.face_groups.resize(r.provenance.size());
-  for (std::size_t f = 0; f < r.provenance.size(); ++f)
-    r.mesh.face_groups[f] = groups.group(r.provenance[f].operand, r.provenance[f].face);
-  const std::vector<std::string>& names = groups.names();
-  if (std::any_of(names.begin(), names.end(), [](const std::string& n) { return !n.empty(); }))
-    r.mesh.group_names = names;
-}
-
 /// The preconditions of layer mode (boolean_layers).
 void check_layers(std::span<const Mesh> operands, const BooleanOptions& options) {
   if (options.indicator) throw Error("boolean_layers: options.indicator does not apply (the layers are fixed)");
@@ -244,8 +214,8 @@ std::vector<BooleanResult> run_boolean(std::span<const Mesh> operands, const cor
   arena.execute([&] { in = core::prepare_input(operands, options.allow_open); });
   record_input(in, result);
   // With properties no region spans two input faces (each interpolates its own).
-  const std::vector<std::uint32_t> source_groups = properties.empty() ? groups_by_source(groups, in.triangles.sources)
-                                                                      : faces_by_source(operands, in.triangles.sources);
+  const std::vector<std::uint32_t> source_groups =
+      groups.region_keys(operands, in.triangles.sources, /*per_face=*/!properties.empty());
   const auto setup_done = Clock::now();
   PhaseTimes times;
   times.setup_ms = ms_between(start, setup_done);
@@ -268,7 +238,7 @@ std::vector<BooleanResult> run_boolean(std::span<const Mesh> operands, const cor
     mesh_stats.push_back(out.stats);
     results.push_back(k < count ? result : std::move(result));
     record_output(std::move(out), results.back());
-    assign_groups(groups, results.back());
+    groups.assign(results.back().provenance, results.back().mesh);
     if (!properties.empty())
       for (std::string& w :
            core::interpolate_properties(properties, operands, results.back().provenance, results.back().mesh))

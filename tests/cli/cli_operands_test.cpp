@@ -133,6 +133,18 @@ TEST(CliOutputFile, ReadOnlyOutputIsRefused) {
 #endif
 #endif
 
+/// Runs `ember ARGS` in dir under a 1 GB address-space limit; checks it
+/// exits with 1 and writes no o.obj, and returns its stderr.
+[[maybe_unused]] std::string run_under_memory_limit(const TempDir& dir, const std::string& args) {
+  const std::string cmd = "cd " + shell_quote(dir.work().string()) + " && ulimit -v 1000000 && " +
+                          shell_quote(cli_path()) + " " + args + " 2>" + shell_quote((dir.io() / "err.txt").string());
+  const int status = std::system(cmd.c_str());
+  EXPECT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_FALSE(fs::exists(dir / "o.obj"));
+  return read_file(dir.io() / "err.txt");
+}
+
 TEST(CliErrors, OutOfMemoryWhileReadingSaysSo) {
 #ifdef EMBER_TEST_ASAN
   GTEST_SKIP() << "AddressSanitizer reserves more address space than the limit this test sets";
@@ -146,16 +158,9 @@ TEST(CliErrors, OutOfMemoryWhileReadingSaysSo) {
   std::memcpy(header.data() + 80, &n, 4);
   write_file(dir / "big.stl", header);
   ASSERT_EQ(::truncate((dir / "big.stl").c_str(), 84 + std::int64_t{50} * n), 0);
-  const std::string cmd = "cd " + shell_quote(dir.work().string()) + " && ulimit -v 1000000 && " +
-                          shell_quote(cli_path()) + " union big.stl b.obj -o o.obj 2>" +
-                          shell_quote((dir.io() / "err.txt").string());
-  const int status = std::system(cmd.c_str());
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 1);
-  const std::string err = read_file(dir.io() / "err.txt");
+  const std::string err = run_under_memory_limit(dir, "union big.stl b.obj -o o.obj");
   EXPECT_TRUE(has(err, "ember: out of memory while reading big.stl")) << err;
   EXPECT_FALSE(has(err, "unexpected error")) << err;
-  EXPECT_FALSE(fs::exists(dir / "o.obj"));
 #endif
 }
 
@@ -180,16 +185,9 @@ TEST(CliErrors, OutOfMemoryDuringTheBooleanSaysSo) {
   };
   ember::write_mesh(comb(0), dir / "a.obj");
   ember::write_mesh(comb(1), dir / "b.obj");
-  const std::string cmd = "cd " + shell_quote(dir.work().string()) + " && ulimit -v 1000000 && " +
-                          shell_quote(cli_path()) + " union a.obj b.obj -o o.obj --threads 2 2>" +
-                          shell_quote((dir.io() / "err.txt").string());
-  const int status = std::system(cmd.c_str());
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 1);
-  const std::string err = read_file(dir.io() / "err.txt");
+  const std::string err = run_under_memory_limit(dir, "union a.obj b.obj -o o.obj --threads 2");
   EXPECT_TRUE(has(err, "ember: out of memory while computing the Boolean of 14400 triangles")) << err;
   EXPECT_FALSE(has(err, "unexpected error")) << err;
-  EXPECT_FALSE(fs::exists(dir / "o.obj"));
 #endif
 }
 

@@ -41,11 +41,36 @@ FaceGroups FaceGroups::of(std::span<const Mesh> operands) {
       if (!used[g]) continue;
       const bool named = g < m.group_names.size() && !m.group_names[g].empty();
       op.output[g] =
-          named ? output_group("n:" + m.group_names[g], m.group_names[g]) : output_group("#" + std::to_string(g), "");
+          named ? output_group("n:" + m.group_names[g], m.group_names[g]) : output_group(std::string(1, '#').append(std::to_string(g)), "");
     }
     out.per_operand_.push_back(std::move(op));
   }
   return out;
+}
+
+std::vector<std::uint32_t> FaceGroups::region_keys(std::span<const Mesh> operands, std::span<const Provenance> sources,
+                                                   bool per_face) const {
+  std::vector<std::uint32_t> keys;
+  if (per_face) {
+    std::vector<std::uint32_t> base(operands.size() + 1, 0);
+    for (std::size_t o = 0; o < operands.size(); ++o)
+      base[o + 1] = base[o] + static_cast<std::uint32_t>(operands[o].face_count());
+    keys.resize(sources.size());
+    for (std::size_t id = 0; id < sources.size(); ++id) keys[id] = base[sources[id].operand] + sources[id].face;
+  } else if (!empty()) {
+    keys.resize(sources.size());
+    for (std::size_t id = 0; id < sources.size(); ++id) keys[id] = group(sources[id].operand, sources[id].face);
+  }
+  return keys;
+}
+
+void FaceGroups::assign(std::span<const Provenance> provenance, Mesh& out) const {
+  if (empty()) return;
+  out.face_groups.resize(provenance.size());
+  for (std::size_t f = 0; f < provenance.size(); ++f)
+    out.face_groups[f] = group(provenance[f].operand, provenance[f].face);
+  if (std::any_of(names_.begin(), names_.end(), [](const std::string& n) { return !n.empty(); }))
+    out.group_names = names_;
 }
 
 std::uint32_t FaceGroups::group(std::uint32_t operand, std::uint32_t face) const {

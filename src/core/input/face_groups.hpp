@@ -24,6 +24,14 @@ class FaceGroups {
   std::uint32_t group(std::uint32_t operand, std::uint32_t face) const;
   /// Per output group its name ("" when unnamed).
   const std::vector<std::string>& names() const { return names_; }
+  /// Per source id (`sources[id]` its input face) the key that keeps output
+  /// regions apart (build_regions): its face group, or with `per_face` its
+  /// input face itself; empty when nothing needs keeping apart.
+  std::vector<std::uint32_t> region_keys(std::span<const Mesh> operands, std::span<const Provenance> sources,
+                                         bool per_face) const;
+  /// Puts each face of `out` in its source face's group (`provenance`, one
+  /// per face) and sets the names when any group has one; nothing without groups.
+  void assign(std::span<const Provenance> provenance, Mesh& out) const;
 
   static constexpr std::uint32_t kMaxGroup = 1u << 24;
 

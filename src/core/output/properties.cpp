@@ -13,8 +13,6 @@ namespace {
 struct V3 {
   double x, y, z;
 };
-V3 sub(const Vec3d& a, const Vec3d& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V3 cross(const V3& a, const V3& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 double dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
 /// The Newell normal of a face (not normalized): robust for any planar polygon.
@@ -93,10 +91,10 @@ struct CornerMix {
   std::array<double, 3> weight{};
 };
 
-/// The mixes of every corner of output face f, and whether the Boolean
-/// reversed it against its source face.
+/// The mixes of every corner of output face f and its (unnormalized)
+/// normal; returns whether the Boolean reversed it against its source face.
 bool mix_face(const Mesh& out, std::size_t f, const Mesh& in, std::span<const std::uint32_t> source,
-              std::vector<CornerMix>& mixes) {
+              std::vector<CornerMix>& mixes, V3& n_out) {
   const std::span<const std::uint32_t> face = out.face(f);
   const V3 n_in = face_normal(in, source);
   mixes.resize(face.size());
@@ -112,7 +110,8 @@ bool mix_face(const Mesh& out, std::size_t f, const Mesh& in, std::span<const st
       mixes[k].weight = b;
     }
   }
-  return dot(face_normal(out, face), n_in) < 0;
+  n_out = face_normal(out, face);
+  return dot(n_out, n_in) < 0;
 }
 
 }  // namespace
@@ -134,7 +133,8 @@ std::vector<std::string> interpolate_properties(const PropertyPlan& plan, std::s
     const Provenance src = provenance[f];
     const Mesh& in = operands[src.operand];
     const std::span<const std::uint32_t> face = out.face(f), source = in.face(src.face);
-    const bool reversed = mix_face(out, f, in, source, mixes);
+    V3 n_out;
+    const bool reversed = mix_face(out, f, in, source, mixes, n_out);
     for (std::size_t ch = 0; ch < plan.channels.size(); ++ch) {
       const std::uint32_t width = plan.channels[ch].width;
       const bool normal = plan.channels[ch].name == "normal" && width == 3;
@@ -144,9 +144,8 @@ std::vector<std::string> interpolate_properties(const PropertyPlan& plan, std::s
         if (!p) {
           lacking[ch][src.operand] = 1;
           if (normal) {  // the face's own normal
-            const V3 n = face_normal(out, face);
-            const double len = std::sqrt(dot(n, n));
-            if (len > 0) dst[0] = float(n.x / len), dst[1] = float(n.y / len), dst[2] = float(n.z / len);
+            const double len = std::sqrt(dot(n_out, n_out));
+            if (len > 0) dst[0] = float(n_out.x / len), dst[1] = float(n_out.y / len), dst[2] = float(n_out.z / len);
           }
           continue;
         }
