@@ -50,6 +50,7 @@ struct OutputPolygon {
   static constexpr std::size_t kMaxLayers = 255;
 };
 static_assert(sizeof(OutputPolygon) <= 48, "output pieces are the largest buffer of a solve: keep them small");
+static_assert(OutputPolygon::kMaxLayers <= UINT8_MAX, "layer_lo and layer_hi count operands in 8 bits");
 
 /// The whole input triangle, without stored vertices.
 inline bool unbuilt(const OutputPolygon& p) { return p.vertices.empty() && p.path == OutputPolygon::kNoPath; }
